@@ -1,0 +1,146 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "util/types.h"
+
+struct sqlite3;
+struct sqlite3_stmt;
+
+namespace colmap_gcn {
+
+// COLMAP's pair-id encoding (scene/database.cc): the smaller id first.
+const uint64_t kMaxNumImages = 2147483647;
+image_pair_t ImagePairToPairId(image_t image_id1, image_t image_id2);
+ImagePair PairIdToImagePair(image_pair_t pair_id);
+// True if the pair must be swapped to put the smaller id first, as COLMAP
+// stores matches with column 0 indexing the smaller image id.
+bool SwapImagePair(image_t image_id1, image_t image_id2);
+
+typedef Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+    FeatureKeypoints;  // rows x {2,4,6} columns, x y [a11 a12 a21 a22]
+typedef Eigen::Matrix<uint8_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+    FeatureDescriptors;  // rows x 128 (SIFT)
+typedef Eigen::Matrix<uint32_t, Eigen::Dynamic, 2, Eigen::RowMajor>
+    FeatureMatches;  // point2D_idx in image_id1, in image_id2
+
+// Two-view geometry configurations (estimators/two_view_geometry.h).
+enum class TwoViewGeometryConfig : int {
+  kUndefined = 0,
+  kDegenerate = 1,
+  kCalibrated = 2,
+  kUncalibrated = 3,
+  kPlanar = 4,
+  kPanoramic = 5,
+  kPlanarOrPanoramic = 6,
+  kWatermark = 7,
+  kMultiple = 8,
+};
+
+// A pair counts as verified, as COLMAP's mapper sees it, when its config is
+// one of {2,3,4,5,6,8} and it has at least min_num_inliers inlier matches.
+bool IsVerifiedTwoViewGeometry(int config, size_t num_inliers,
+                               size_t min_num_inliers);
+
+struct DatabaseCamera {
+  camera_t camera_id = kInvalidCameraId;
+  int model_id = -1;
+  uint64_t width = 0;
+  uint64_t height = 0;
+  std::vector<double> params;
+  bool has_prior_focal_length = false;
+};
+
+struct DatabaseImage {
+  image_t image_id = kInvalidImageId;
+  std::string name;
+  camera_t camera_id = kInvalidCameraId;
+};
+
+// Summary row of the two_view_geometries table.
+struct TwoViewGeometryInfo {
+  image_pair_t pair_id = kInvalidImagePairId;
+  int config = 0;
+  size_t num_inliers = 0;
+};
+
+struct TwoViewGeometry {
+  int config = 0;
+  FeatureMatches inlier_matches;  // oriented as requested (image_id1 first)
+  Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector4d qvec = Eigen::Vector4d(1, 0, 0, 0);  // w x y z
+  Eigen::Vector3d tvec = Eigen::Vector3d::Zero();
+};
+
+// The database layouts we recognise.
+enum class DatabaseSchema {
+  kColmap38,      // COLMAP <= 3.8: images carry prior_q*/prior_t* columns
+  kColmap39Plus,  // COLMAP 3.9 - 4.x: rigs/frames/pose_priors tables
+};
+
+const char* DatabaseSchemaName(DatabaseSchema schema);
+
+// Access to a COLMAP SQLite database through the sqlite3 C API. Opening
+// verifies that the file exists, is SQLite and has COLMAP's tables, and
+// throws Error with a one-line message otherwise; nothing is ever created by
+// opening. Read-only unless opened with kReadWrite.
+class Database {
+ public:
+  enum class Mode { kReadOnly, kReadWrite };
+
+  explicit Database(const std::string& path, Mode mode = Mode::kReadOnly);
+  ~Database();
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+
+  const std::string& Path() const { return path_; }
+  DatabaseSchema Schema() const { return schema_; }
+
+  size_t NumCameras() const;
+  size_t NumImages() const;
+  size_t NumKeypoints() const;    // summed over images
+  size_t NumDescriptors() const;  // summed over images
+  size_t NumMatchedPairs() const;  // rows in matches
+  size_t NumTwoViewGeometries() const;  // rows in two_view_geometries
+
+  std::vector<DatabaseCamera> ReadAllCameras() const;
+  std::vector<DatabaseImage> ReadAllImages() const;  // ordered by image_id
+  bool ExistsImageWithName(const std::string& name) const;
+  DatabaseImage ReadImageWithName(const std::string& name) const;  // throws
+
+  FeatureKeypoints ReadKeypoints(image_t image_id) const;
+  FeatureDescriptors ReadDescriptors(image_t image_id) const;
+  size_t NumDescriptorsForImage(image_t image_id) const;
+
+  // Matches oriented so that column 0 indexes image_id1.
+  FeatureMatches ReadMatches(image_t image_id1, image_t image_id2) const;
+  std::vector<image_pair_t> ReadMatchedPairIds() const;
+  bool ExistsMatches(image_t image_id1, image_t image_id2) const;
+
+  std::vector<TwoViewGeometryInfo> ReadTwoViewGeometryInfos() const;
+  TwoViewGeometry ReadTwoViewGeometry(image_t image_id1,
+                                      image_t image_id2) const;
+  bool ExistsTwoViewGeometry(image_t image_id1, image_t image_id2) const;
+
+  // Writing (requires kReadWrite). Used to set ground-truth intrinsics before
+  // point_triangulator and by tests.
+  void UpdateCamera(const DatabaseCamera& camera);
+  void ClearMatchesAndTwoViewGeometries();
+
+ private:
+  void DetectSchema();
+  void RequireWritable() const;
+
+  std::string path_;
+  Mode mode_;
+  sqlite3* db_ = nullptr;
+  DatabaseSchema schema_ = DatabaseSchema::kColmap38;
+};
+
+}  // namespace colmap_gcn

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace colmap_gcn {
+
+// Splits on any of the delimiter characters, keeping empty fields.
+std::vector<std::string> StringSplit(const std::string& str,
+                                     const std::string& delimiters);
+
+std::string StringTrim(const std::string& str);
+
+bool StringStartsWith(const std::string& str, const std::string& prefix);
+
+// Joins elements with a separator.
+std::string StringJoin(const std::vector<std::string>& parts,
+                       const std::string& separator);
+
+// Quotes an argument for a POSIX shell, for logging commands users can copy.
+std::string ShellQuote(const std::string& str);
+
+}  // namespace colmap_gcn

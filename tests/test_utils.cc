@@ -1,0 +1,67 @@
+#include "test_utils.h"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+
+#include "util/file.h"
+
+namespace colmap_gcn {
+namespace test {
+
+std::string SharedDatasetsDir() {
+  const char* env = std::getenv("COLMAP_GCN_SHARED_DIR");
+  const std::string shared =
+      env != nullptr ? env : std::string(COLMAP_GCN_SOURCE_DIR) + "/../shared";
+  const std::string datasets = JoinPaths(shared, "datasets");
+  return ExistsDir(datasets) ? datasets : "";
+}
+
+std::string RealColmapExe() {
+  const char* env = std::getenv("COLMAP_EXE");
+  if (env != nullptr && ExistsFile(env)) {
+    return env;
+  }
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) {
+    return "";
+  }
+  std::string dirs = path;
+  size_t begin = 0;
+  while (begin <= dirs.size()) {
+    size_t end = dirs.find(':', begin);
+    if (end == std::string::npos) end = dirs.size();
+    const std::string candidate =
+        JoinPaths(dirs.substr(begin, end - begin), "colmap");
+    if (ExistsFile(candidate) && candidate != FrontendExe()) {
+      return candidate;
+    }
+    begin = end + 1;
+  }
+  return "";
+}
+
+std::string FrontendExe() { return COLMAP_GCN_FRONTEND_EXE; }
+
+int RunShell(const std::string& command, std::string* output) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) {
+    return -1;
+  }
+  std::array<char, 4096> buffer;
+  std::string captured;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    captured.append(buffer.data(), n);
+  }
+  const int status = pclose(pipe);
+  if (output != nullptr) {
+    *output = captured;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace test
+}  // namespace colmap_gcn

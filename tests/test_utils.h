@@ -1,0 +1,23 @@
+#pragma once
+
+#include <string>
+
+namespace colmap_gcn {
+namespace test {
+
+// ../shared/datasets beside the repository, or "" when absent (tests that
+// need it call GTEST_SKIP()).
+std::string SharedDatasetsDir();
+
+// The real COLMAP binary (COLMAP_EXE or PATH), or "" when not installed.
+std::string RealColmapExe();
+
+// Our `colmap` front end built by this tree.
+std::string FrontendExe();
+
+// Runs a shell command, capturing stdout+stderr into *output (if non-null).
+// Returns the exit code (or -1 if it could not run).
+int RunShell(const std::string& command, std::string* output = nullptr);
+
+}  // namespace test
+}  // namespace colmap_gcn
