@@ -16,7 +16,8 @@ class Error : public std::runtime_error {
 namespace internal {
 inline void StreamAll(std::ostringstream&) {}
 template <typename T, typename... Rest>
-void StreamAll(std::ostringstream& stream, const T& value,
+void StreamAll(std::ostringstream& stream,
+               const T& value,
                const Rest&... rest) {
   stream << value;
   StreamAll(stream, rest...);
@@ -32,12 +33,12 @@ template <typename... Args>
 }
 
 // Internal invariants (programming errors, not user errors).
-#define THROW_CHECK(condition)                                          \
-  do {                                                                  \
-    if (!(condition)) {                                                 \
-      ::colmap_gcn::ThrowError(__FILE__, ":", __LINE__,                 \
-                               ": check failed: ", #condition);         \
-    }                                                                   \
+#define THROW_CHECK(condition)                                      \
+  do {                                                              \
+    if (!(condition)) {                                             \
+      ::colmap_gcn::ThrowError(                                     \
+          __FILE__, ":", __LINE__, ": check failed: ", #condition); \
+    }                                                               \
   } while (false)
 
 }  // namespace colmap_gcn

@@ -44,8 +44,7 @@ std::string ReadTextFile(const std::string& path) {
   return contents.str();
 }
 
-void WriteFileAtomically(const std::string& path,
-                         const std::string& contents) {
+void WriteFileAtomically(const std::string& path, const std::string& contents) {
   const std::string tmp_path = path + ".tmp";
   {
     std::ofstream file(tmp_path, std::ios::binary | std::ios::trunc);

@@ -48,10 +48,11 @@ std::string StringJoin(const std::vector<std::string>& parts,
 }
 
 std::string ShellQuote(const std::string& str) {
-  const bool safe = !str.empty() && std::all_of(str.begin(), str.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) ||
-           std::string("_-./=:,+@%").find(c) != std::string::npos;
-  });
+  const bool safe =
+      !str.empty() && std::all_of(str.begin(), str.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) ||
+               std::string("_-./=:,+@%").find(c) != std::string::npos;
+      });
   if (safe) {
     return str;
   }

@@ -1,0 +1,241 @@
+#include "controllers/colmap_runner.h"
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <regex>
+
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+
+extern char** environ;
+
+namespace colmap_gcn {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string CanonicalPath(const std::string& path) {
+  std::error_code ec;
+  const fs::path canonical = fs::canonical(path, ec);
+  return ec ? path : canonical.string();
+}
+
+std::string SelfExecutable() { return CanonicalPath("/proc/self/exe"); }
+
+bool IsExecutableFile(const std::string& path) {
+  return ExistsFile(path) && access(path.c_str(), X_OK) == 0;
+}
+
+std::string TailLines(const std::string& text, size_t num_lines) {
+  std::vector<std::string> lines = StringSplit(StringTrim(text), "\n");
+  if (lines.size() > num_lines) {
+    lines.erase(lines.begin(), lines.end() - num_lines);
+  }
+  return StringJoin(lines, " | ");
+}
+
+// COLMAP lines worth showing as progress when not verbose.
+bool IsProgressLine(const std::string& line) {
+  static const std::regex kProgress(
+      R"(Processed file \[|Matching block \[|Registering image #|Elapsed time|Importing matches)");
+  return std::regex_search(line, kProgress);
+}
+
+}  // namespace
+
+std::string FindColmapExecutable(const std::string& hint) {
+  const std::string self = SelfExecutable();
+  auto usable = [&](const std::string& path) {
+    return IsExecutableFile(path) && CanonicalPath(path) != self;
+  };
+  if (!hint.empty()) {
+    if (!usable(hint)) {
+      ThrowError("COLMAP executable not usable: ", hint);
+    }
+    return hint;
+  }
+  const char* env = std::getenv("COLMAP_EXE");
+  if (env != nullptr && *env != '\0') {
+    if (!usable(env)) {
+      ThrowError("COLMAP_EXE=", env, " is not an executable COLMAP");
+    }
+    return env;
+  }
+  const char* path = std::getenv("PATH");
+  for (const std::string& dir : StringSplit(path ? path : "", ":")) {
+    if (dir.empty()) continue;
+    const std::string candidate = JoinPaths(dir, "colmap");
+    if (usable(candidate)) {
+      return candidate;
+    }
+  }
+  ThrowError(
+      "COLMAP not found: install it (scripts/install_deps.sh) or set "
+      "COLMAP_EXE to the real colmap binary");
+}
+
+std::vector<std::string> HeadlessArguments(
+    const std::string& command, const std::vector<std::string>& args) {
+  auto has = [&](const std::string& option) {
+    return std::any_of(args.begin(), args.end(), [&](const std::string& arg) {
+      return StringStartsWith(arg, option);
+    });
+  };
+  std::vector<std::string> extra;
+  if (command == "feature_extractor" && !has("--SiftExtraction.use_gpu")) {
+    extra = {"--SiftExtraction.use_gpu", "0"};
+  }
+  const bool is_matcher =
+      command.size() > 8 &&
+      command.compare(command.size() - 8, 8, "_matcher") == 0;
+  if ((is_matcher || command == "matches_importer") &&
+      !has("--SiftMatching.use_gpu")) {
+    extra = {"--SiftMatching.use_gpu", "0"};
+  }
+  return extra;
+}
+
+int RunProcess(const std::string& exe,
+               const std::vector<std::string>& args,
+               std::string* output,
+               const std::function<void(const std::string&)>& on_line) {
+  int pipe_fds[2];
+  if (pipe(pipe_fds) != 0) {
+    ThrowError("cannot create a pipe to run ", exe);
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_addclose(&actions, pipe_fds[1]);
+
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(exe.c_str()));
+  for (const auto& arg : args) {
+    argv.push_back(const_cast<char*>(arg.c_str()));
+  }
+  argv.push_back(nullptr);
+
+  pid_t pid;
+  const int spawn_error =
+      posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(pipe_fds[1]);
+  if (spawn_error != 0) {
+    close(pipe_fds[0]);
+    ThrowError("cannot run ", exe, ": ", std::strerror(spawn_error));
+  }
+
+  std::string captured;
+  std::string partial_line;
+  char buffer[4096];
+  ssize_t n;
+  while ((n = read(pipe_fds[0], buffer, sizeof(buffer))) != 0) {
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    captured.append(buffer, n);
+    partial_line.append(buffer, n);
+    size_t newline;
+    while ((newline = partial_line.find('\n')) != std::string::npos) {
+      if (on_line) on_line(partial_line.substr(0, newline));
+      partial_line.erase(0, newline + 1);
+    }
+  }
+  if (on_line && !partial_line.empty()) on_line(partial_line);
+  close(pipe_fds[0]);
+
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (output != nullptr) {
+    *output = std::move(captured);
+  }
+  if (WIFSIGNALED(status)) {
+    return 128 + WTERMSIG(status);
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+ColmapRunner::ColmapRunner(const ColmapRunnerOptions& options)
+    : options_(options), exe_(FindColmapExecutable(options.colmap_exe)) {
+  std::string output;
+  RunProcess(exe_, {"help"}, &output);
+  static const std::regex kVersion(R"(COLMAP (\d+)\.(\d+)(\.\d+)?)");
+  std::smatch match;
+  if (!std::regex_search(output, match, kVersion)) {
+    ThrowError(exe_,
+               " does not look like COLMAP (`",
+               exe_,
+               " help` printed no version)");
+  }
+  version_ = match[1].str() + "." + match[2].str() + match[3].str();
+  const int major = std::stoi(match[1].str());
+  const int minor = std::stoi(match[2].str());
+  // The option names we pass (--SiftMatching.*, matches_importer) are those
+  // of COLMAP 3.6-3.9; later releases renamed them.
+  if (major != 3 || minor < 6 || minor > 9) {
+    ThrowError("unsupported COLMAP ",
+               version_,
+               " at ",
+               exe_,
+               ": colmap-gcn drives COLMAP 3.6-3.9");
+  }
+}
+
+std::string ColmapRunner::Run(const std::string& command,
+                              std::vector<std::string> args) const {
+  const std::vector<std::string> extra = HeadlessArguments(command, args);
+  args.insert(args.end(), extra.begin(), extra.end());
+  args.insert(args.begin(), command);
+
+  std::vector<std::string> quoted;
+  for (const auto& arg : args) quoted.push_back(ShellQuote(arg));
+  const std::string command_line =
+      ShellQuote(exe_) + " " + StringJoin(quoted, " ");
+
+  std::ofstream log;
+  if (!options_.log_path.empty()) {
+    log.open(options_.log_path, std::ios::app);
+    log << "$ " << command_line << "\n";
+  }
+  std::string output;
+  const int status =
+      RunProcess(exe_, args, &output, [&](const std::string& line) {
+        if (options_.verbose ||
+            (options_.show_progress && IsProgressLine(line))) {
+          std::cerr << "  [colmap " << command << "] " << line << "\n";
+        }
+      });
+  if (log.is_open()) {
+    log << output << "[exit " << status << "]\n";
+  }
+  if (status != 0) {
+    const std::string why =
+        status > 128 ? "crashed (signal " + std::to_string(status - 128) + ")"
+                     : "failed (exit " + std::to_string(status) + ")";
+    ThrowError("colmap ",
+               command,
+               " ",
+               why,
+               ": ",
+               command_line,
+               " -- last output: ",
+               TailLines(output, 3));
+  }
+  return output;
+}
+
+}  // namespace colmap_gcn

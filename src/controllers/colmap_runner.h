@@ -1,0 +1,64 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace colmap_gcn {
+
+struct ColmapRunnerOptions {
+  // Path of the real COLMAP binary; empty: $COLMAP_EXE, else the first
+  // `colmap` on PATH that is not this front end.
+  std::string colmap_exe = "";
+
+  // Every COLMAP invocation and its full output are appended here; empty
+  // keeps no log.
+  std::string log_path = "";
+
+  // Echo all of COLMAP's output (otherwise only its progress lines).
+  bool verbose = false;
+
+  // Echo progress lines at all.
+  bool show_progress = true;
+};
+
+// Finds the real COLMAP as described above; throws Error if none is found.
+std::string FindColmapExecutable(const std::string& hint = "");
+
+// Runs real COLMAP subcommands headless: CPU-only flags are added to the
+// commands that would otherwise try to open an OpenGL context, output goes
+// to the log, and failures throw Error naming the command with the tail of
+// COLMAP's output.
+class ColmapRunner {
+ public:
+  explicit ColmapRunner(const ColmapRunnerOptions& options = {});
+
+  const std::string& Executable() const { return exe_; }
+
+  // "3.8" etc., from `colmap help`. Throws if the binary is not COLMAP.
+  const std::string& Version() const { return version_; }
+
+  // Runs `colmap command args...` and returns its combined output.
+  std::string Run(const std::string& command,
+                  std::vector<std::string> args) const;
+
+ private:
+  ColmapRunnerOptions options_;
+  std::string exe_;
+  std::string version_;
+};
+
+// The arguments COLMAP 3.8 needs to run `command` without a GPU/display,
+// unless args already set them.
+std::vector<std::string> HeadlessArguments(
+    const std::string& command, const std::vector<std::string>& args);
+
+// Runs a program (no shell) and captures stdout+stderr. Each output line is
+// passed to on_line as it arrives. Returns the exit status; a program killed
+// by a signal returns 128 + signal, as a shell would.
+int RunProcess(const std::string& exe,
+               const std::vector<std::string>& args,
+               std::string* output,
+               const std::function<void(const std::string&)>& on_line = {});
+
+}  // namespace colmap_gcn

@@ -1,0 +1,79 @@
+#include "exe/colmap.h"
+
+#include <unistd.h>
+
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "controllers/colmap_runner.h"
+#include "exe/gcn_matcher.h"
+#include "exe/gcn_synth.h"
+#include "util/error.h"
+
+namespace colmap_gcn {
+namespace {
+
+typedef std::function<int(int, char**)> Command;
+
+std::vector<std::pair<std::string, Command>> OurCommands() {
+  std::vector<std::pair<std::string, Command>> commands;
+  commands.emplace_back("gcn_matcher", &RunGcnMatcher);
+#ifdef COLMAP_GCN_HAVE_SYNTH
+  commands.emplace_back("gcn_synth", &RunGcnSynth);
+#endif
+  return commands;
+}
+
+// Replaces this process with the real COLMAP: arguments, output and exit
+// code are exactly COLMAP's.
+int ExecRealColmap(int argc, char** argv) {
+  const std::string exe = FindColmapExecutable();
+  std::vector<char*> args(argv, argv + argc);
+  args[0] = const_cast<char*>(exe.c_str());
+  args.push_back(nullptr);
+  execv(exe.c_str(), args.data());
+  ThrowError("cannot run ", exe, ": ", std::strerror(errno));
+}
+
+int PrintHelp(int argc, char** argv) {
+  std::string output;
+  RunProcess(FindColmapExecutable(),
+             std::vector<std::string>(argv + 1, argv + argc),
+             &output);
+  std::cout << output << "\ncolmap-gcn " << COLMAP_GCN_VERSION
+            << " commands (colmap <command> -h for options):\n";
+  for (const auto& command : OurCommands()) {
+    std::cout << "  " << command.first << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int RunColmapFrontend(int argc, char** argv) {
+  try {
+    const std::string command = argc > 1 ? argv[1] : "help";
+    for (const auto& [name, run] : OurCommands()) {
+      if (command == name) {
+        // Commands see argv without the program name, like COLMAP's.
+        return run(argc - 1, argv + 1);
+      }
+    }
+    if (command == "help" || command == "-h" || command == "--help") {
+      return PrintHelp(argc, argv);
+    }
+    return ExecRealColmap(argc, argv);
+  } catch (const Error& error) {
+    std::cerr << "ERROR: " << error.what() << std::endl;
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "ERROR: " << error.what() << std::endl;
+    return 1;
+  }
+}
+
+}  // namespace colmap_gcn

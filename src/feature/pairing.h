@@ -1,0 +1,93 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/database.h"
+#include "util/types.h"
+
+namespace colmap_gcn {
+
+// The pair-generation framework mirrors COLMAP >= 3.10 (feature/pairing.h):
+// a generator yields blocks of image pairs until HasFinished(); matchers
+// consume the blocks. Generators here are built from the database's image
+// list (the role of COLMAP's FeatureMatcherCache) so they port directly.
+
+struct ExhaustiveMatchingOptions {
+  // Block size, i.e. number of images whose pairs form one block.
+  int block_size = 50;
+
+  bool Check() const;
+};
+
+struct ImagePairsMatchingOptions {
+  // Number of image pairs in one block.
+  int block_size = 1225;
+
+  // Path to the pairs file (`name1 name2` per line, COLMAP's format).
+  std::string match_list_path = "";
+
+  bool Check() const;
+};
+
+class PairGenerator {
+ public:
+  virtual ~PairGenerator() = default;
+
+  virtual void Reset() = 0;
+
+  virtual bool HasFinished() const = 0;
+
+  virtual std::vector<ImagePair> Next() = 0;
+
+  // Drains the generator from the start: every pair exactly once.
+  std::vector<ImagePair> AllPairs();
+};
+
+// All N(N-1)/2 pairs, in blocks of block_size x block_size images.
+class ExhaustivePairGenerator : public PairGenerator {
+ public:
+  using PairOptions = ExhaustiveMatchingOptions;
+
+  ExhaustivePairGenerator(const ExhaustiveMatchingOptions& options,
+                          const std::vector<DatabaseImage>& images);
+  ExhaustivePairGenerator(const ExhaustiveMatchingOptions& options,
+                          const Database& database);
+
+  void Reset() override;
+  bool HasFinished() const override;
+  std::vector<ImagePair> Next() override;
+
+ private:
+  const ExhaustiveMatchingOptions options_;
+  std::vector<image_t> image_ids_;
+  size_t block_size_;
+  size_t num_blocks_;
+  size_t start_idx1_ = 0;
+  size_t start_idx2_ = 0;
+};
+
+// Pairs read from a pairs file, names resolved against the database. Unknown
+// names are an error that lists them; self-pairs and duplicates (in either
+// order) are dropped, as COLMAP does.
+class ImportedPairGenerator : public PairGenerator {
+ public:
+  using PairOptions = ImagePairsMatchingOptions;
+
+  ImportedPairGenerator(const ImagePairsMatchingOptions& options,
+                        const std::vector<DatabaseImage>& images);
+  ImportedPairGenerator(const ImagePairsMatchingOptions& options,
+                        const Database& database);
+
+  void Reset() override;
+  bool HasFinished() const override;
+  std::vector<ImagePair> Next() override;
+
+ private:
+  const ImagePairsMatchingOptions options_;
+  std::vector<ImagePair> image_pairs_;
+  size_t pair_idx_ = 0;
+};
+
+}  // namespace colmap_gcn

@@ -1,0 +1,88 @@
+#include "feature/pairs_io.h"
+
+#include <iomanip>
+#include <sstream>
+#include <unordered_map>
+
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+
+std::vector<ImageNamePair> ReadPairsFile(const std::string& path) {
+  if (!ExistsFile(path)) {
+    ThrowError("pairs file not found: ", path);
+  }
+  std::istringstream lines(ReadTextFile(path));
+  std::vector<ImageNamePair> pairs;
+  std::string line;
+  size_t line_number = 0;
+  while (std::getline(lines, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') {
+      line.pop_back();
+    }
+    if (StringTrim(line).empty() || line[0] == '#') {
+      continue;
+    }
+    // COLMAP splits on single spaces; a double space yields an empty name.
+    const std::vector<std::string> fields = StringSplit(line, " ");
+    if (fields.size() < 2 || fields[0].empty() || fields[1].empty()) {
+      ThrowError(path,
+                 ":",
+                 line_number,
+                 ": expected `name1 name2` separated by one space, got \"",
+                 line,
+                 "\"");
+    }
+    pairs.emplace_back(fields[0], fields[1]);
+  }
+  return pairs;
+}
+
+void CheckPairsFileImageName(const std::string& name) {
+  if (name.empty()) {
+    ThrowError("empty image name cannot be written to a pairs file");
+  }
+  if (name.find_first_of(" \t\r\n") != std::string::npos) {
+    ThrowError("image name \"",
+               name,
+               "\" contains white space, which COLMAP's pairs file cannot "
+               "represent; rename the image");
+  }
+}
+
+void WritePairsFile(const std::string& path,
+                    const std::vector<ImagePair>& pairs,
+                    const std::vector<DatabaseImage>& images,
+                    const std::vector<float>& scores) {
+  THROW_CHECK(scores.empty() || scores.size() == pairs.size());
+  std::unordered_map<image_t, const std::string*> id_to_name;
+  for (const auto& image : images) {
+    id_to_name.emplace(image.image_id, &image.name);
+  }
+  std::ostringstream contents;
+  contents << std::setprecision(6);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const auto it1 = id_to_name.find(pairs[i].first);
+    const auto it2 = id_to_name.find(pairs[i].second);
+    if (it1 == id_to_name.end() || it2 == id_to_name.end()) {
+      ThrowError("pair (",
+                 pairs[i].first,
+                 ", ",
+                 pairs[i].second,
+                 ") names an image id not in the database");
+    }
+    CheckPairsFileImageName(*it1->second);
+    CheckPairsFileImageName(*it2->second);
+    contents << *it1->second << ' ' << *it2->second;
+    if (!scores.empty()) {
+      contents << ' ' << scores[i];
+    }
+    contents << '\n';
+  }
+  WriteFileAtomically(path, contents.str());
+}
+
+}  // namespace colmap_gcn

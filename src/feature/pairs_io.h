@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/database.h"
+#include "util/types.h"
+
+namespace colmap_gcn {
+
+// COLMAP 3.8's pairs file (matches_importer --match_type pairs): one
+// `name1 name2` per line, split on a single space; `#` and empty lines are
+// skipped; a third column is ignored by COLMAP (we use it for scores).
+
+typedef std::pair<std::string, std::string> ImageNamePair;
+
+// Reads a pairs file the way COLMAP 3.8 parses it. Throws Error if the file
+// cannot be read or a line has fewer than two names.
+std::vector<ImageNamePair> ReadPairsFile(const std::string& path);
+
+// Throws Error if COLMAP's parser would split or mangle the name (space, tab,
+// newline, carriage return, or empty).
+void CheckPairsFileImageName(const std::string& name);
+
+// Writes pairs (by image id) as names, one pair a line, atomically. If scores
+// is non-empty it must be parallel to pairs and becomes the third column.
+void WritePairsFile(const std::string& path,
+                    const std::vector<ImagePair>& pairs,
+                    const std::vector<DatabaseImage>& images,
+                    const std::vector<float>& scores = {});
+
+}  // namespace colmap_gcn

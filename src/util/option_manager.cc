@@ -1,0 +1,78 @@
+#include "util/option_manager.h"
+
+#include <iostream>
+#include <sstream>
+
+#include "util/error.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+
+namespace po = boost::program_options;
+
+OptionManager::OptionManager(const std::string& command,
+                             const std::string& summary)
+    : command_(command),
+      summary_(summary),
+      desc_(std::make_unique<po::options_description>("Options")) {
+  desc_->add_options()("help,h", "Print this help and exit.");
+}
+
+void OptionManager::AddPassThroughPrefix(const std::string& prefix) {
+  pass_through_prefixes_.push_back(prefix);
+}
+
+std::string OptionManager::Help() const {
+  std::ostringstream help;
+  help << "Usage: colmap " << command_ << " [options]\n\n"
+       << summary_ << "\n\n"
+       << *desc_;
+  for (const auto& prefix : pass_through_prefixes_) {
+    help << "  --" << prefix << "*  passed on to COLMAP unchanged\n";
+  }
+  return help.str();
+}
+
+bool OptionManager::Parse(int argc, char** argv) {
+  // Split off the pass-through options first: boost would reject them.
+  std::vector<std::string> ours;
+  pass_through_.clear();
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    bool passed = false;
+    for (const auto& prefix : pass_through_prefixes_) {
+      if (StringStartsWith(arg, "--" + prefix)) {
+        pass_through_.push_back(arg);
+        if (arg.find('=') == std::string::npos && i + 1 < argc) {
+          pass_through_.push_back(argv[++i]);
+        }
+        passed = true;
+        break;
+      }
+    }
+    if (!passed) {
+      ours.push_back(arg);
+    }
+  }
+
+  po::variables_map vmap;
+  try {
+    po::store(po::command_line_parser(ours).options(*desc_).run(), vmap);
+    if (vmap.count("help") > 0) {
+      std::cout << Help() << std::flush;
+      return false;
+    }
+    po::notify(vmap);
+  } catch (const po::error& error) {
+    ThrowError("colmap ",
+               command_,
+               ": ",
+               error.what(),
+               " (see colmap ",
+               command_,
+               " -h)");
+  }
+  return true;
+}
+
+}  // namespace colmap_gcn

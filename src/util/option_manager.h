@@ -1,0 +1,70 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+
+namespace colmap_gcn {
+
+// Command-line options in COLMAP's style (`--database_path D`,
+// `--GcnMatching.k1 100`, `-h`), on boost::program_options like COLMAP's own
+// OptionManager. Options bind directly to fields of Options structs.
+class OptionManager {
+ public:
+  OptionManager(const std::string& command, const std::string& summary);
+
+  template <typename T>
+  void AddRequiredOption(const std::string& name,
+                         T* option,
+                         const std::string& help = "");
+  template <typename T>
+  void AddDefaultOption(const std::string& name,
+                        T* option,
+                        const std::string& help = "");
+
+  // Options starting with one of these prefixes (e.g. "SiftMatching.") are
+  // not ours: they are collected verbatim for passing on to COLMAP.
+  void AddPassThroughPrefix(const std::string& prefix);
+  const std::vector<std::string>& PassThroughArguments() const {
+    return pass_through_;
+  }
+
+  // Parses argv[1..]. Returns false when help was requested (it has been
+  // printed; the command should exit 0). Throws Error on unknown, missing or
+  // malformed options.
+  bool Parse(int argc, char** argv);
+
+  std::string Help() const;
+
+ private:
+  std::string command_;
+  std::string summary_;
+  std::unique_ptr<boost::program_options::options_description> desc_;
+  std::vector<std::string> required_;
+  std::vector<std::string> pass_through_prefixes_;
+  std::vector<std::string> pass_through_;
+};
+
+template <typename T>
+void OptionManager::AddRequiredOption(const std::string& name,
+                                      T* option,
+                                      const std::string& help) {
+  desc_->add_options()(name.c_str(),
+                       boost::program_options::value<T>(option)->required(),
+                       help.c_str());
+  required_.push_back(name);
+}
+
+template <typename T>
+void OptionManager::AddDefaultOption(const std::string& name,
+                                     T* option,
+                                     const std::string& help) {
+  desc_->add_options()(
+      name.c_str(),
+      boost::program_options::value<T>(option)->default_value(*option),
+      help.c_str());
+}
+
+}  // namespace colmap_gcn

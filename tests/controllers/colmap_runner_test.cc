@@ -1,0 +1,76 @@
+#include "controllers/colmap_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "test_utils.h"
+#include "util/error.h"
+#include "util/file.h"
+
+namespace colmap_gcn {
+namespace {
+
+TEST(HeadlessArguments, AddsCpuFlagsUnlessGiven) {
+  EXPECT_EQ(HeadlessArguments("feature_extractor", {}),
+            (std::vector<std::string>{"--SiftExtraction.use_gpu", "0"}));
+  EXPECT_EQ(HeadlessArguments("matches_importer", {}),
+            (std::vector<std::string>{"--SiftMatching.use_gpu", "0"}));
+  EXPECT_EQ(HeadlessArguments("exhaustive_matcher", {}),
+            (std::vector<std::string>{"--SiftMatching.use_gpu", "0"}));
+  EXPECT_TRUE(
+      HeadlessArguments("matches_importer", {"--SiftMatching.use_gpu=1"})
+          .empty());
+  EXPECT_TRUE(HeadlessArguments("mapper", {}).empty());
+}
+
+TEST(RunProcess, CapturesOutputLinesAndExitCodes) {
+  std::string output;
+  std::vector<std::string> lines;
+  EXPECT_EQ(RunProcess("/bin/sh",
+                       {"-c", "echo one; echo two >&2; exit 3"},
+                       &output,
+                       [&](const std::string& line) { lines.push_back(line); }),
+            3);
+  EXPECT_EQ(lines, (std::vector<std::string>{"one", "two"}));
+  // A crash is reported like a shell does: 128 + signal.
+  EXPECT_EQ(RunProcess("/bin/sh", {"-c", "kill -ABRT $$"}, &output), 134);
+  EXPECT_THROW(RunProcess("/nonexistent/program", {}, &output), Error);
+}
+
+TEST(FindColmapExecutable, HonoursHintAndRejectsMissing) {
+  EXPECT_THROW(FindColmapExecutable("/nonexistent/colmap"), Error);
+  const std::string real = test::RealColmapExe();
+  if (real.empty()) GTEST_SKIP() << "COLMAP not installed";
+  EXPECT_EQ(FindColmapExecutable(real), real);
+}
+
+TEST(ColmapRunner, ReportsVersionAndFailures) {
+  if (test::RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
+  ColmapRunnerOptions options;
+  options.colmap_exe = test::RealColmapExe();
+  options.show_progress = false;
+  TemporaryDirectory dir;
+  options.log_path = JoinPaths(dir.Path(), "colmap.log");
+  const ColmapRunner colmap(options);
+  EXPECT_EQ(colmap.Version().substr(0, 2), "3.");
+  try {
+    colmap.Run("model_analyzer", {"--path", JoinPaths(dir.Path(), "none")});
+    FAIL() << "expected an error";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("model_analyzer"), std::string::npos);
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_NE(ReadTextFile(options.log_path).find("model_analyzer"),
+            std::string::npos);
+}
+
+TEST(ColmapRunner, RejectsAProgramThatIsNotColmap) {
+  ColmapRunnerOptions options;
+  options.colmap_exe = "/bin/true";
+  EXPECT_THROW(ColmapRunner runner(options), Error);
+}
+
+}  // namespace
+}  // namespace colmap_gcn

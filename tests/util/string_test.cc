@@ -1,0 +1,27 @@
+#include "util/string.h"
+
+#include <gtest/gtest.h>
+
+namespace colmap_gcn {
+namespace {
+
+TEST(StringSplit, KeepsEmptyFields) {
+  EXPECT_EQ(StringSplit("a b", " "), (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(StringSplit("a  b", " "), (std::vector<std::string>{"a", "", "b"}));
+  EXPECT_EQ(StringSplit("", " "), (std::vector<std::string>{""}));
+}
+
+TEST(StringTrim, RemovesSurroundingWhitespace) {
+  EXPECT_EQ(StringTrim("  a b \t\r\n"), "a b");
+  EXPECT_EQ(StringTrim(" \t "), "");
+}
+
+TEST(ShellQuote, QuotesOnlyWhenNeeded) {
+  EXPECT_EQ(ShellQuote("--database_path=/a/b.db"), "--database_path=/a/b.db");
+  EXPECT_EQ(ShellQuote("my file"), "'my file'");
+  EXPECT_EQ(ShellQuote("it's"), "'it'\\''s'");
+  EXPECT_EQ(ShellQuote(""), "''");
+}
+
+}  // namespace
+}  // namespace colmap_gcn
