@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package colmap-gcn needs to build, test and run.
+# Idempotent and non-interactive; run as root (or with sudo available).
+set -euo pipefail
+
+PACKAGES=(
+  # Toolchain and build.
+  build-essential cmake git
+  # COLMAP itself (3.8, CPU-only use) and the libraries its design card names.
+  colmap libeigen3-dev libopencv-dev libceres-dev libsuitesparse-dev
+  # Database access, options, tests and benchmarks.
+  libsqlite3-dev sqlite3 libboost-program-options-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # Measuring whole commands; formatting.
+  hyperfine time clang-format
+)
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  SUDO="sudo"
+fi
+
+missing=()
+for package in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null |
+      grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install_deps: all ${#PACKAGES[@]} packages already installed"
+  exit 0
+fi
+
+echo "install_deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install_deps: done"
