@@ -11,6 +11,7 @@
 
 #include "controllers/colmap_runner.h"
 #include "exe/gcn_matcher.h"
+#include "exe/gcn_reconstructor.h"
 #include "exe/gcn_synth.h"
 #include "util/error.h"
 
@@ -22,6 +23,7 @@ typedef std::function<int(int, char**)> Command;
 std::vector<std::pair<std::string, Command>> OurCommands() {
   std::vector<std::pair<std::string, Command>> commands;
   commands.emplace_back("gcn_matcher", &RunGcnMatcher);
+  commands.emplace_back("gcn_reconstructor", &RunGcnReconstructor);
 #ifdef COLMAP_GCN_HAVE_SYNTH
   commands.emplace_back("gcn_synth", &RunGcnSynth);
 #endif

@@ -1,0 +1,96 @@
+#include "controllers/gcn_matching.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include "controllers/colmap_runner.h"
+#include "util/error.h"
+#include "util/timer.h"
+
+namespace colmap_gcn {
+
+bool GcnMatchingOptions::Check() const {
+  return pairing == "exhaustive" ||
+         (pairing == "imported" && !match_list_path.empty());
+}
+
+std::unique_ptr<PairGenerator> CreatePairGenerator(
+    const GcnMatchingOptions& options, const Database& database) {
+  if (!options.Check()) {
+    ThrowError("invalid --GcnMatching.pairing \"",
+               options.pairing,
+               "\" (exhaustive, or imported with "
+               "--GcnMatching.match_list_path)");
+  }
+  if (options.pairing == "imported") {
+    ImagePairsMatchingOptions imported;
+    imported.match_list_path = options.match_list_path;
+    return std::make_unique<ImportedPairGenerator>(imported, database);
+  }
+  return std::make_unique<ExhaustivePairGenerator>(ExhaustiveMatchingOptions(),
+                                                   database);
+}
+
+GcnMatchingReport RunGcnMatching(const std::string& database_path,
+                                 const GcnMatchingOptions& options,
+                                 const std::vector<std::string>& colmap_args) {
+  GcnMatchingReport report;
+  report.pairing = options.pairing;
+  const Timer pairing_timer;
+  std::vector<ImagePair> pairs;
+  {
+    const Database database(database_path);
+    report.num_images = database.NumImages();
+    if (report.num_images < 2) {
+      ThrowError(database_path,
+                 " has ",
+                 report.num_images,
+                 " image(s); run colmap feature_extractor first");
+    }
+    pairs = CreatePairGenerator(options, database)->AllPairs();
+  }
+  report.pairing_seconds = pairing_timer.ElapsedSeconds();
+
+  ColmapRunnerOptions runner_options;
+  runner_options.log_path = options.colmap_log_path.empty()
+                                ? database_path + ".colmap.log"
+                                : options.colmap_log_path;
+  runner_options.verbose = options.verbose;
+  const ColmapRunner colmap(runner_options);
+
+  PairMatchingOptions matching_options;
+  matching_options.pairs_path = options.pairs_path;
+  matching_options.colmap_args = colmap_args;
+  std::cerr << "gcn_matcher: " << pairs.size() << " pairs from "
+            << options.pairing << " pairing of " << report.num_images
+            << " images; matching with COLMAP " << colmap.Version() << "\n";
+  report.matching =
+      MatchImagePairs(colmap, database_path, pairs, matching_options);
+  return report;
+}
+
+void PrintGcnMatchingReport(const GcnMatchingReport& report) {
+  std::printf("%-12s %8s %8s %8s %8s %10s %10s\n",
+              "pairing",
+              "images",
+              "TAM",
+              "UM",
+              "UM/TAM",
+              "pairing_s",
+              "matching_s");
+  std::printf("%-12s %8zu %8zu %8zu %8.3f %10.2f %10.2f\n",
+              report.pairing.c_str(),
+              report.num_images,
+              report.matching.num_attempted_pairs,
+              report.matching.num_verified_pairs,
+              report.matching.UsefulRatio(),
+              report.pairing_seconds,
+              report.matching.matching_seconds);
+  if (report.matching.num_already_matched > 0) {
+    std::printf("(%zu of the pairs were already matched in the database)\n",
+                report.matching.num_already_matched);
+  }
+  std::printf("pairs written to %s\n", report.matching.pairs_path.c_str());
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,149 @@
+#include "exe/gcn_reconstructor.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include "controllers/colmap_runner.h"
+#include "controllers/gcn_matching.h"
+#include "exe/gcn_matcher.h"
+#include "scene/database.h"
+#include "scene/reconstruction.h"
+#include "scene/reconstruction_stats.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/option_manager.h"
+#include "util/string.h"
+#include "util/timer.h"
+
+namespace colmap_gcn {
+namespace {
+
+// The pass-through arguments that belong to one COLMAP option group.
+std::vector<std::string> ArgumentsWithPrefix(
+    const std::vector<std::string>& args,
+    const std::vector<std::string>& prefixes) {
+  std::vector<std::string> selected;
+  for (size_t i = 0; i < args.size(); ++i) {
+    bool match = false;
+    for (const auto& prefix : prefixes) {
+      match = match || StringStartsWith(args[i], "--" + prefix);
+    }
+    const bool has_value = args[i].find('=') == std::string::npos &&
+                           i + 1 < args.size() &&
+                           !StringStartsWith(args[i + 1], "--");
+    if (match) {
+      selected.push_back(args[i]);
+      if (has_value) selected.push_back(args[i + 1]);
+    }
+    if (has_value) ++i;
+  }
+  return selected;
+}
+
+}  // namespace
+
+int RunGcnReconstructor(int argc, char** argv) {
+  std::string image_path;
+  std::string workspace_path;
+  GcnMatchingOptions matching_options;
+  OptionManager manager(
+      "gcn_reconstructor",
+      "Extracts features, matches the pairs gcn_matcher selects and maps: "
+      "<workspace_path>/database.db and <workspace_path>/sparse/N.");
+  manager.AddRequiredOption("image_path", &image_path);
+  manager.AddRequiredOption("workspace_path", &workspace_path);
+  AddGcnMatchingOptions(&manager, &matching_options);
+  manager.AddPassThroughPrefix("ImageReader.");
+  manager.AddPassThroughPrefix("SiftExtraction.");
+  manager.AddPassThroughPrefix("Mapper.");
+  if (!manager.Parse(argc, argv)) {
+    return 0;
+  }
+  if (!ExistsDir(image_path)) {
+    ThrowError("image folder not found: ", image_path);
+  }
+  CreateDirIfNotExists(workspace_path);
+  const std::string database_path = JoinPaths(workspace_path, "database.db");
+  const std::string sparse_path = JoinPaths(workspace_path, "sparse");
+  const auto& args = manager.PassThroughArguments();
+
+  ColmapRunnerOptions runner_options;
+  runner_options.log_path = JoinPaths(workspace_path, "colmap.log");
+  runner_options.verbose = matching_options.verbose;
+  const ColmapRunner colmap(runner_options);
+  if (matching_options.colmap_log_path.empty()) {
+    matching_options.colmap_log_path = runner_options.log_path;
+  }
+
+  std::cerr << "[1/3] feature_extractor\n";
+  Timer timer;
+  std::vector<std::string> extraction_args = {
+      "--database_path", database_path, "--image_path", image_path};
+  const auto extraction_options =
+      ArgumentsWithPrefix(args, {"ImageReader.", "SiftExtraction."});
+  extraction_args.insert(extraction_args.end(),
+                         extraction_options.begin(),
+                         extraction_options.end());
+  colmap.Run("feature_extractor", extraction_args);
+  const double extraction_seconds = timer.ElapsedSeconds();
+
+  std::cerr << "[2/3] gcn_matcher\n";
+  const GcnMatchingReport matching =
+      RunGcnMatching(database_path,
+                     matching_options,
+                     ArgumentsWithPrefix(args, {"SiftMatching."}));
+
+  std::cerr << "[3/3] mapper\n";
+  CreateDirIfNotExists(sparse_path);
+  if (!ListSparseModels(sparse_path).empty()) {
+    ThrowError(sparse_path,
+               " already holds models; use a new --workspace_path");
+  }
+  timer.Restart();
+  std::vector<std::string> mapper_args = {"--database_path",
+                                          database_path,
+                                          "--image_path",
+                                          image_path,
+                                          "--output_path",
+                                          sparse_path};
+  const auto mapper_options = ArgumentsWithPrefix(args, {"Mapper."});
+  mapper_args.insert(
+      mapper_args.end(), mapper_options.begin(), mapper_options.end());
+  colmap.Run("mapper", mapper_args);
+  const double mapping_seconds = timer.ElapsedSeconds();
+
+  PrintGcnMatchingReport(matching);
+  const std::vector<std::string> models = ListSparseModels(sparse_path);
+  std::printf("\nextraction %.1f s, matching %.1f s, mapping %.1f s\n",
+              extraction_seconds,
+              matching.matching.matching_seconds,
+              mapping_seconds);
+  std::printf("%-28s %10s %8s %12s %10s %10s\n",
+              "model",
+              "registered",
+              "points",
+              "observations",
+              "track_len",
+              "reproj_px");
+  for (const std::string& model_path : models) {
+    Reconstruction reconstruction;
+    reconstruction.Read(model_path);
+    const ReconstructionStatistics stats =
+        ComputeReconstructionStatistics(reconstruction);
+    std::printf("%-28s %5zu/%-4zu %8zu %12zu %10.2f %10.3f\n",
+                model_path.c_str(),
+                stats.num_registered_images,
+                matching.num_images,
+                stats.num_points3D,
+                stats.num_observations,
+                stats.mean_track_length,
+                stats.mean_reprojection_error);
+  }
+  if (models.empty()) {
+    std::printf("(the mapper produced no model)\n");
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace colmap_gcn
