@@ -43,7 +43,8 @@ enum class TwoViewGeometryConfig : int {
 
 // A pair counts as verified, as COLMAP's mapper sees it, when its config is
 // one of {2,3,4,5,6,8} and it has at least min_num_inliers inlier matches.
-bool IsVerifiedTwoViewGeometry(int config, size_t num_inliers,
+bool IsVerifiedTwoViewGeometry(int config,
+                               size_t num_inliers,
                                size_t min_num_inliers);
 
 struct DatabaseCamera {
@@ -90,6 +91,16 @@ const char* DatabaseSchemaName(DatabaseSchema schema);
 // verifies that the file exists, is SQLite and has COLMAP's tables, and
 // throws Error with a one-line message otherwise; nothing is ever created by
 // opening. Read-only unless opened with kReadWrite.
+//
+// Read-only mode uses SQLITE_OPEN_READONLY and never modifies the database
+// file. COLMAP creates its databases in WAL journal mode, for which sqlite
+// still creates (empty) "<path>-wal" and "<path>-shm" side files next to the
+// database on a read-only open if they do not exist; they are harmless and
+// are not removed, since a concurrent COLMAP process may be using them.
+//
+// Reads for a missing row return empty results (0 rows); blobs whose size
+// does not match their rows/cols throw Error. Not thread-safe: use one
+// Database per thread.
 class Database {
  public:
   enum class Mode { kReadOnly, kReadWrite };
@@ -104,9 +115,9 @@ class Database {
 
   size_t NumCameras() const;
   size_t NumImages() const;
-  size_t NumKeypoints() const;    // summed over images
-  size_t NumDescriptors() const;  // summed over images
-  size_t NumMatchedPairs() const;  // rows in matches
+  size_t NumKeypoints() const;          // summed over images
+  size_t NumDescriptors() const;        // summed over images
+  size_t NumMatchedPairs() const;       // rows in matches
   size_t NumTwoViewGeometries() const;  // rows in two_view_geometries
 
   std::vector<DatabaseCamera> ReadAllCameras() const;
@@ -117,13 +128,18 @@ class Database {
   FeatureKeypoints ReadKeypoints(image_t image_id) const;
   FeatureDescriptors ReadDescriptors(image_t image_id) const;
   size_t NumDescriptorsForImage(image_t image_id) const;
+  size_t NumKeypointsForImage(image_t image_id) const;
 
   // Matches oriented so that column 0 indexes image_id1.
   FeatureMatches ReadMatches(image_t image_id1, image_t image_id2) const;
   std::vector<image_pair_t> ReadMatchedPairIds() const;
   bool ExistsMatches(image_t image_id1, image_t image_id2) const;
 
+  // Only pair_id, config and rows (no blobs), ordered by pair_id.
   std::vector<TwoViewGeometryInfo> ReadTwoViewGeometryInfos() const;
+  // Oriented like ReadMatches; for image_id1 > image_id2 the stored geometry
+  // is inverted as COLMAP does (F and E transposed, H inverted, inverse
+  // relative pose). F/E/H are stored row-major.
   TwoViewGeometry ReadTwoViewGeometry(image_t image_id1,
                                       image_t image_id2) const;
   bool ExistsTwoViewGeometry(image_t image_id1, image_t image_id2) const;

@@ -29,7 +29,7 @@ struct ModelImage {
   std::vector<Eigen::Vector2d> points2D;
   std::vector<point3D_t> point3D_ids;  // kInvalidPoint3DId if none
 
-  Eigen::Matrix3d RotationMatrix() const;   // world-to-camera
+  Eigen::Matrix3d RotationMatrix() const;    // world-to-camera
   Eigen::Vector3d ProjectionCenter() const;  // -R^T t
   size_t NumPoints3D() const;  // observations with a valid point3D id
 };
@@ -57,7 +57,10 @@ class Reconstruction {
   std::map<point3D_t, ModelPoint3D> points3D;
 
   // Reads from a folder holding either cameras.bin/images.bin/points3D.bin or
-  // the .txt files (binary preferred when both exist).
+  // the .txt files (binary preferred when all three .bin files exist). In the
+  // text format a missing points3D.txt is read as an empty point set (ground
+  // truth folders carry only poses); cameras.txt and images.txt are required.
+  // Writers create the folder if needed and write full double precision.
   void Read(const std::string& path);
   void ReadText(const std::string& path);
   void ReadBinary(const std::string& path);

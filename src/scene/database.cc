@@ -1,0 +1,672 @@
+#include "scene/database.h"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <cstring>
+#include <set>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "scene/camera_models.h"
+#include "util/error.h"
+#include "util/file.h"
+
+namespace colmap_gcn {
+namespace {
+
+// The tables every COLMAP database since 3.x has; our reads need all of them.
+const char* const kRequiredTables[] = {"cameras",
+                                       "images",
+                                       "keypoints",
+                                       "descriptors",
+                                       "matches",
+                                       "two_view_geometries"};
+
+// Tables introduced after 3.8 (pose_priors in 3.9/3.10, rigs/frames in 4.x).
+const char* const kNewerTables[] = {
+    "pose_priors", "rigs", "rig_sensors", "frames", "frame_data"};
+
+// A prepared statement that finalizes itself and turns every sqlite failure
+// into a one-line Error naming the database, so that callers never have to
+// check return codes.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& db_path, const char* sql)
+      : db_(db), db_path_(db_path) {
+    if (sqlite3_prepare_v2(db_, sql, -1, &stmt_, nullptr) != SQLITE_OK) {
+      Fail("preparing");
+    }
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  void BindInt64(const int index, const int64_t value) {
+    Check(sqlite3_bind_int64(stmt_, index, value), "binding");
+  }
+  void BindText(const int index, const std::string& value) {
+    Check(sqlite3_bind_text(stmt_,
+                            index,
+                            value.data(),
+                            static_cast<int>(value.size()),
+                            SQLITE_TRANSIENT),
+          "binding");
+  }
+  void BindBlob(const int index, const void* data, const size_t num_bytes) {
+    Check(
+        sqlite3_bind_blob(
+            stmt_, index, data, static_cast<int>(num_bytes), SQLITE_TRANSIENT),
+        "binding");
+  }
+
+  // Returns true when a row is available, false when the statement is done.
+  bool Step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    Fail("executing");
+  }
+
+  void Execute() {
+    while (Step()) {
+    }
+  }
+
+  int64_t Int64(const int col) const {
+    return sqlite3_column_int64(stmt_, col);
+  }
+  bool IsNull(const int col) const {
+    return sqlite3_column_type(stmt_, col) == SQLITE_NULL;
+  }
+  std::string Text(const int col) const {
+    const unsigned char* text = sqlite3_column_text(stmt_, col);
+    const int num_bytes = sqlite3_column_bytes(stmt_, col);
+    return text == nullptr
+               ? std::string()
+               : std::string(reinterpret_cast<const char*>(text), num_bytes);
+  }
+  // Blob pointer (may be null for NULL or empty blobs) and its size.
+  const void* Blob(const int col, size_t* num_bytes) const {
+    const void* data = sqlite3_column_blob(stmt_, col);
+    *num_bytes = static_cast<size_t>(sqlite3_column_bytes(stmt_, col));
+    return data;
+  }
+
+  const std::string& DbPath() const { return db_path_; }
+
+ private:
+  void Check(const int rc, const char* action) const {
+    if (rc != SQLITE_OK) Fail(action);
+  }
+
+  [[noreturn]] void Fail(const char* action) const {
+    ThrowError("database ",
+               db_path_,
+               ": sqlite error while ",
+               action,
+               " '",
+               stmt_ != nullptr ? sqlite3_sql(stmt_) : "statement",
+               "': ",
+               sqlite3_errmsg(db_));
+  }
+
+  sqlite3* db_;
+  const std::string& db_path_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+// Runs a query that returns a single integer (COUNT, SUM); NULL gives 0.
+size_t QueryCount(sqlite3* db, const std::string& db_path, const char* sql) {
+  Statement stmt(db, db_path, sql);
+  if (!stmt.Step() || stmt.IsNull(0)) return 0;
+  return static_cast<size_t>(std::max<int64_t>(0, stmt.Int64(0)));
+}
+
+// Reads the (rows, cols, data) column triple starting at col into a matrix,
+// as COLMAP stores keypoints, descriptors and matches. A NULL or empty blob
+// with zero rows is an empty matrix; any size mismatch is corruption.
+template <typename MatrixType>
+MatrixType ReadMatrixBlob(const Statement& stmt,
+                          const int col,
+                          const char* table,
+                          const int64_t key) {
+  typedef typename MatrixType::Scalar Scalar;
+  const int64_t rows = stmt.Int64(col);
+  const int64_t cols = stmt.Int64(col + 1);
+  size_t num_bytes = 0;
+  const void* data = stmt.Blob(col + 2, &num_bytes);
+
+  const bool fixed_cols = MatrixType::ColsAtCompileTime != Eigen::Dynamic;
+  if (rows < 0 || cols < 0 ||
+      (fixed_cols && rows > 0 && cols != MatrixType::ColsAtCompileTime)) {
+    ThrowError("database ",
+               stmt.DbPath(),
+               ": invalid shape ",
+               rows,
+               "x",
+               cols,
+               " in ",
+               table,
+               " for id ",
+               key);
+  }
+  const size_t expected_bytes =
+      static_cast<size_t>(rows) * static_cast<size_t>(cols) * sizeof(Scalar);
+  if (num_bytes != expected_bytes) {
+    ThrowError("database ",
+               stmt.DbPath(),
+               ": blob of ",
+               num_bytes,
+               " bytes in ",
+               table,
+               " for id ",
+               key,
+               " does not match its shape ",
+               rows,
+               "x",
+               cols);
+  }
+
+  const int64_t matrix_cols =
+      fixed_cols ? static_cast<int64_t>(MatrixType::ColsAtCompileTime) : cols;
+  MatrixType matrix(rows, matrix_cols);
+  if (expected_bytes > 0) {
+    std::memcpy(matrix.data(), data, expected_bytes);
+  }
+  return matrix;
+}
+
+// Reads a fixed-size float64 blob (F, E, H as 9 row-major values, qvec,
+// tvec). A NULL/empty blob keeps the default; other sizes are corruption.
+template <int N>
+void ReadDoubleBlob(const Statement& stmt,
+                    const int col,
+                    const char* name,
+                    const int64_t pair_id,
+                    double* values) {
+  size_t num_bytes = 0;
+  const void* data = stmt.Blob(col, &num_bytes);
+  if (num_bytes == 0) return;
+  if (num_bytes != N * sizeof(double)) {
+    ThrowError("database ",
+               stmt.DbPath(),
+               ": ",
+               name,
+               " blob of two_view_geometries pair_id ",
+               pair_id,
+               " has ",
+               num_bytes,
+               " bytes, expected ",
+               N * sizeof(double));
+  }
+  std::memcpy(values, data, num_bytes);
+}
+
+// COLMAP writes F, E, H as row-major 3x3 (it transposes Eigen's column-major
+// storage before writing).
+Eigen::Matrix3d ReadRowMajorMatrix3d(const Statement& stmt,
+                                     const int col,
+                                     const char* name,
+                                     const int64_t pair_id) {
+  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> matrix =
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor>::Zero();
+  ReadDoubleBlob<9>(stmt, col, name, pair_id, matrix.data());
+  return matrix;
+}
+
+Eigen::Matrix3d QuaternionToRotationMatrix(const Eigen::Vector4d& qvec) {
+  const Eigen::Quaterniond quat(qvec(0), qvec(1), qvec(2), qvec(3));
+  return quat.normalized().toRotationMatrix();
+}
+
+// Expresses a two-view geometry estimated for (image1, image2) as the one for
+// (image2, image1), as COLMAP's TwoViewGeometry::Invert does.
+void InvertTwoViewGeometry(TwoViewGeometry* geometry) {
+  geometry->F.transposeInPlace();
+  geometry->E.transposeInPlace();
+  // An unset (zero) homography has no inverse; keep it zero rather than
+  // filling it with infinities.
+  if (geometry->H.determinant() != 0.0) {
+    geometry->H = geometry->H.inverse().eval();
+  }
+  if (geometry->qvec.norm() > 0.0) {
+    const Eigen::Vector4d q = geometry->qvec.normalized();
+    const Eigen::Vector4d q_inv(q(0), -q(1), -q(2), -q(3));
+    geometry->tvec = -QuaternionToRotationMatrix(q_inv) * geometry->tvec;
+    geometry->qvec = q_inv;
+  }
+  geometry->inlier_matches.col(0).swap(geometry->inlier_matches.col(1));
+}
+
+DatabaseImage ReadImageRow(const Statement& stmt) {
+  DatabaseImage image;
+  image.image_id = static_cast<image_t>(stmt.Int64(0));
+  image.name = stmt.Text(1);
+  image.camera_id = static_cast<camera_t>(stmt.Int64(2));
+  return image;
+}
+
+}  // namespace
+
+image_pair_t ImagePairToPairId(image_t image_id1, image_t image_id2) {
+  THROW_CHECK(image_id1 < kMaxNumImages && image_id2 < kMaxNumImages);
+  if (SwapImagePair(image_id1, image_id2)) {
+    std::swap(image_id1, image_id2);
+  }
+  return kMaxNumImages * image_id1 + image_id2;
+}
+
+ImagePair PairIdToImagePair(const image_pair_t pair_id) {
+  const image_t image_id2 = static_cast<image_t>(pair_id % kMaxNumImages);
+  const image_t image_id1 =
+      static_cast<image_t>((pair_id - image_id2) / kMaxNumImages);
+  return ImagePair(image_id1, image_id2);
+}
+
+bool SwapImagePair(const image_t image_id1, const image_t image_id2) {
+  return image_id1 > image_id2;
+}
+
+bool IsVerifiedTwoViewGeometry(const int config,
+                               const size_t num_inliers,
+                               const size_t min_num_inliers) {
+  switch (static_cast<TwoViewGeometryConfig>(config)) {
+    case TwoViewGeometryConfig::kCalibrated:
+    case TwoViewGeometryConfig::kUncalibrated:
+    case TwoViewGeometryConfig::kPlanar:
+    case TwoViewGeometryConfig::kPanoramic:
+    case TwoViewGeometryConfig::kPlanarOrPanoramic:
+    case TwoViewGeometryConfig::kMultiple:
+      return num_inliers >= min_num_inliers;
+    default:
+      return false;
+  }
+}
+
+const char* DatabaseSchemaName(const DatabaseSchema schema) {
+  switch (schema) {
+    case DatabaseSchema::kColmap38:
+      return "COLMAP 3.8";
+    case DatabaseSchema::kColmap39Plus:
+      return "COLMAP 3.9+";
+  }
+  return "unknown";
+}
+
+Database::Database(const std::string& path, const Mode mode)
+    : path_(path), mode_(mode) {
+  // sqlite3_open_v2 without SQLITE_OPEN_CREATE would fail on a missing file
+  // too, but with a less helpful message; checking first also rejects
+  // directories.
+  if (!ExistsFile(path_)) {
+    ThrowError("database not found: ", path_);
+  }
+  // Never SQLITE_OPEN_CREATE: opening must not create files. Read-only mode
+  // uses SQLITE_OPEN_READONLY so that sqlite itself guarantees we cannot
+  // modify a database COLMAP may still be using.
+  const int flags = (mode_ == Mode::kReadOnly ? SQLITE_OPEN_READONLY
+                                              : SQLITE_OPEN_READWRITE) |
+                    SQLITE_OPEN_NOMUTEX;
+  const int rc = sqlite3_open_v2(path_.c_str(), &db_, flags, nullptr);
+  if (rc != SQLITE_OK) {
+    const std::string message =
+        db_ != nullptr ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    ThrowError("cannot open database ", path_, ": ", message);
+  }
+  // COLMAP may hold a write lock while it matches; wait instead of failing.
+  sqlite3_busy_timeout(db_, 10000);
+  try {
+    DetectSchema();
+  } catch (...) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw;
+  }
+}
+
+Database::~Database() {
+  if (db_ != nullptr) {
+    sqlite3_close(db_);
+  }
+}
+
+void Database::DetectSchema() {
+  std::set<std::string> tables;
+  {
+    // sqlite opens any file lazily; the first read is where a non-SQLite
+    // file is detected, so translate that into the user-facing message.
+    sqlite3_stmt* stmt = nullptr;
+    int rc = sqlite3_prepare_v2(
+        db_,
+        "SELECT name FROM sqlite_master WHERE type = 'table'",
+        -1,
+        &stmt,
+        nullptr);
+    while (rc == SQLITE_OK && (rc = sqlite3_step(stmt)) == SQLITE_ROW) {
+      tables.insert(
+          reinterpret_cast<const char*>(sqlite3_column_text(stmt, 0)));
+      rc = SQLITE_OK;
+    }
+    const std::string message = sqlite3_errmsg(db_);
+    sqlite3_finalize(stmt);
+    if (rc == SQLITE_NOTADB) {
+      ThrowError(path_, " is not a COLMAP database (not an SQLite file)");
+    }
+    if (rc != SQLITE_DONE) {
+      ThrowError("cannot read database ", path_, ": ", message);
+    }
+  }
+
+  std::string missing;
+  for (const char* table : kRequiredTables) {
+    if (tables.count(table) == 0) {
+      missing += (missing.empty() ? "" : ", ") + std::string(table);
+    }
+  }
+  if (!missing.empty()) {
+    ThrowError(
+        path_, " is not a COLMAP database (missing tables: ", missing, ")");
+  }
+
+  bool has_newer_tables = false;
+  for (const char* table : kNewerTables) {
+    has_newer_tables |= tables.count(table) > 0;
+  }
+  bool has_image_priors = false;
+  {
+    Statement stmt(db_, path_, "PRAGMA table_info(images)");
+    while (stmt.Step()) {
+      has_image_priors |= stmt.Text(1) == "prior_qw";
+    }
+  }
+
+  // Newer COLMAP may keep the old prior columns when it migrates a 3.8
+  // database, so the new tables decide.
+  if (has_newer_tables) {
+    schema_ = DatabaseSchema::kColmap39Plus;
+  } else if (has_image_priors) {
+    schema_ = DatabaseSchema::kColmap38;
+  } else {
+    ThrowError(path_,
+               " has an unrecognised COLMAP database schema (images has no "
+               "prior columns and there are no rigs/frames/pose_priors "
+               "tables)");
+  }
+}
+
+void Database::RequireWritable() const {
+  if (mode_ != Mode::kReadWrite) {
+    ThrowError("database ", path_, " was opened read-only");
+  }
+}
+
+size_t Database::NumCameras() const {
+  return QueryCount(db_, path_, "SELECT COUNT(*) FROM cameras");
+}
+
+size_t Database::NumImages() const {
+  return QueryCount(db_, path_, "SELECT COUNT(*) FROM images");
+}
+
+size_t Database::NumKeypoints() const {
+  return QueryCount(db_, path_, "SELECT SUM(rows) FROM keypoints");
+}
+
+size_t Database::NumDescriptors() const {
+  return QueryCount(db_, path_, "SELECT SUM(rows) FROM descriptors");
+}
+
+size_t Database::NumMatchedPairs() const {
+  return QueryCount(db_, path_, "SELECT COUNT(*) FROM matches");
+}
+
+size_t Database::NumTwoViewGeometries() const {
+  return QueryCount(db_, path_, "SELECT COUNT(*) FROM two_view_geometries");
+}
+
+std::vector<DatabaseCamera> Database::ReadAllCameras() const {
+  Statement stmt(db_,
+                 path_,
+                 "SELECT camera_id, model, width, height, params, "
+                 "prior_focal_length FROM cameras ORDER BY camera_id");
+  std::vector<DatabaseCamera> cameras;
+  while (stmt.Step()) {
+    DatabaseCamera camera;
+    camera.camera_id = static_cast<camera_t>(stmt.Int64(0));
+    camera.model_id = static_cast<int>(stmt.Int64(1));
+    camera.width = static_cast<uint64_t>(stmt.Int64(2));
+    camera.height = static_cast<uint64_t>(stmt.Int64(3));
+    size_t num_bytes = 0;
+    const void* data = stmt.Blob(4, &num_bytes);
+    if (num_bytes % sizeof(double) != 0) {
+      ThrowError("database ",
+                 path_,
+                 ": params blob of camera ",
+                 camera.camera_id,
+                 " has ",
+                 num_bytes,
+                 " bytes, not a multiple of 8");
+    }
+    camera.params.resize(num_bytes / sizeof(double));
+    if (num_bytes > 0) {
+      std::memcpy(camera.params.data(), data, num_bytes);
+    }
+    camera.has_prior_focal_length = stmt.Int64(5) != 0;
+    cameras.push_back(std::move(camera));
+  }
+  return cameras;
+}
+
+std::vector<DatabaseImage> Database::ReadAllImages() const {
+  Statement stmt(db_,
+                 path_,
+                 "SELECT image_id, name, camera_id FROM images "
+                 "ORDER BY image_id");
+  std::vector<DatabaseImage> images;
+  while (stmt.Step()) {
+    images.push_back(ReadImageRow(stmt));
+  }
+  return images;
+}
+
+bool Database::ExistsImageWithName(const std::string& name) const {
+  Statement stmt(db_, path_, "SELECT 1 FROM images WHERE name = ?");
+  stmt.BindText(1, name);
+  return stmt.Step();
+}
+
+DatabaseImage Database::ReadImageWithName(const std::string& name) const {
+  Statement stmt(db_,
+                 path_,
+                 "SELECT image_id, name, camera_id FROM images WHERE name = ?");
+  stmt.BindText(1, name);
+  if (!stmt.Step()) {
+    ThrowError("database ", path_, " has no image named '", name, "'");
+  }
+  return ReadImageRow(stmt);
+}
+
+FeatureKeypoints Database::ReadKeypoints(const image_t image_id) const {
+  Statement stmt(
+      db_, path_, "SELECT rows, cols, data FROM keypoints WHERE image_id = ?");
+  stmt.BindInt64(1, image_id);
+  if (!stmt.Step()) {
+    return FeatureKeypoints(0, 2);
+  }
+  FeatureKeypoints keypoints =
+      ReadMatrixBlob<FeatureKeypoints>(stmt, 0, "keypoints", image_id);
+  const Eigen::Index cols = keypoints.cols();
+  if (keypoints.rows() > 0 && cols != 2 && cols != 4 && cols != 6) {
+    ThrowError("database ",
+               path_,
+               ": keypoints of image ",
+               image_id,
+               " have ",
+               cols,
+               " columns, expected 2, 4 or 6");
+  }
+  return keypoints;
+}
+
+FeatureDescriptors Database::ReadDescriptors(const image_t image_id) const {
+  Statement stmt(db_,
+                 path_,
+                 "SELECT rows, cols, data FROM descriptors WHERE image_id = ?");
+  stmt.BindInt64(1, image_id);
+  if (!stmt.Step()) {
+    return FeatureDescriptors(0, 128);
+  }
+  return ReadMatrixBlob<FeatureDescriptors>(stmt, 0, "descriptors", image_id);
+}
+
+size_t Database::NumDescriptorsForImage(const image_t image_id) const {
+  Statement stmt(db_, path_, "SELECT rows FROM descriptors WHERE image_id = ?");
+  stmt.BindInt64(1, image_id);
+  return stmt.Step() ? static_cast<size_t>(stmt.Int64(0)) : 0;
+}
+
+size_t Database::NumKeypointsForImage(const image_t image_id) const {
+  Statement stmt(db_, path_, "SELECT rows FROM keypoints WHERE image_id = ?");
+  stmt.BindInt64(1, image_id);
+  return stmt.Step() ? static_cast<size_t>(stmt.Int64(0)) : 0;
+}
+
+FeatureMatches Database::ReadMatches(const image_t image_id1,
+                                     const image_t image_id2) const {
+  const image_pair_t pair_id = ImagePairToPairId(image_id1, image_id2);
+  Statement stmt(
+      db_, path_, "SELECT rows, cols, data FROM matches WHERE pair_id = ?");
+  stmt.BindInt64(1, static_cast<int64_t>(pair_id));
+  if (!stmt.Step()) {
+    return FeatureMatches(0, 2);
+  }
+  FeatureMatches matches = ReadMatrixBlob<FeatureMatches>(
+      stmt, 0, "matches", static_cast<int64_t>(pair_id));
+  if (SwapImagePair(image_id1, image_id2)) {
+    matches.col(0).swap(matches.col(1));
+  }
+  return matches;
+}
+
+std::vector<image_pair_t> Database::ReadMatchedPairIds() const {
+  Statement stmt(db_, path_, "SELECT pair_id FROM matches ORDER BY pair_id");
+  std::vector<image_pair_t> pair_ids;
+  while (stmt.Step()) {
+    pair_ids.push_back(static_cast<image_pair_t>(stmt.Int64(0)));
+  }
+  return pair_ids;
+}
+
+bool Database::ExistsMatches(const image_t image_id1,
+                             const image_t image_id2) const {
+  Statement stmt(db_, path_, "SELECT 1 FROM matches WHERE pair_id = ?");
+  stmt.BindInt64(1,
+                 static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
+  return stmt.Step();
+}
+
+std::vector<TwoViewGeometryInfo> Database::ReadTwoViewGeometryInfos() const {
+  // Only the small columns: the blobs would dominate the cost on large
+  // databases and callers just need the pair graph.
+  Statement stmt(db_,
+                 path_,
+                 "SELECT pair_id, config, rows FROM two_view_geometries "
+                 "ORDER BY pair_id");
+  std::vector<TwoViewGeometryInfo> infos;
+  while (stmt.Step()) {
+    TwoViewGeometryInfo info;
+    info.pair_id = static_cast<image_pair_t>(stmt.Int64(0));
+    info.config = static_cast<int>(stmt.Int64(1));
+    info.num_inliers = static_cast<size_t>(std::max<int64_t>(0, stmt.Int64(2)));
+    infos.push_back(info);
+  }
+  return infos;
+}
+
+TwoViewGeometry Database::ReadTwoViewGeometry(const image_t image_id1,
+                                              const image_t image_id2) const {
+  const image_pair_t pair_id = ImagePairToPairId(image_id1, image_id2);
+  const int64_t key = static_cast<int64_t>(pair_id);
+  Statement stmt(db_,
+                 path_,
+                 "SELECT rows, cols, data, config, F, E, H, qvec, tvec "
+                 "FROM two_view_geometries WHERE pair_id = ?");
+  stmt.BindInt64(1, key);
+  TwoViewGeometry geometry;
+  if (!stmt.Step()) {
+    geometry.inlier_matches = FeatureMatches(0, 2);
+    return geometry;
+  }
+  geometry.inlier_matches =
+      ReadMatrixBlob<FeatureMatches>(stmt, 0, "two_view_geometries", key);
+  geometry.config = static_cast<int>(stmt.Int64(3));
+  geometry.F = ReadRowMajorMatrix3d(stmt, 4, "F", key);
+  geometry.E = ReadRowMajorMatrix3d(stmt, 5, "E", key);
+  geometry.H = ReadRowMajorMatrix3d(stmt, 6, "H", key);
+  ReadDoubleBlob<4>(stmt, 7, "qvec", key, geometry.qvec.data());
+  ReadDoubleBlob<3>(stmt, 8, "tvec", key, geometry.tvec.data());
+  if (SwapImagePair(image_id1, image_id2)) {
+    InvertTwoViewGeometry(&geometry);
+  }
+  return geometry;
+}
+
+bool Database::ExistsTwoViewGeometry(const image_t image_id1,
+                                     const image_t image_id2) const {
+  Statement stmt(
+      db_, path_, "SELECT 1 FROM two_view_geometries WHERE pair_id = ?");
+  stmt.BindInt64(1,
+                 static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
+  return stmt.Step();
+}
+
+void Database::UpdateCamera(const DatabaseCamera& camera) {
+  RequireWritable();
+  const int num_params = CameraModelNumParams(camera.model_id);
+  if (num_params < 0 ||
+      camera.params.size() != static_cast<size_t>(num_params)) {
+    ThrowError("database ",
+               path_,
+               ": cannot write camera ",
+               camera.camera_id,
+               " with model id ",
+               camera.model_id,
+               " and ",
+               camera.params.size(),
+               " params");
+  }
+  Statement stmt(db_,
+                 path_,
+                 "UPDATE cameras SET model = ?, width = ?, height = ?, "
+                 "params = ?, prior_focal_length = ? WHERE camera_id = ?");
+  stmt.BindInt64(1, camera.model_id);
+  stmt.BindInt64(2, static_cast<int64_t>(camera.width));
+  stmt.BindInt64(3, static_cast<int64_t>(camera.height));
+  stmt.BindBlob(4, camera.params.data(), camera.params.size() * sizeof(double));
+  stmt.BindInt64(5, camera.has_prior_focal_length ? 1 : 0);
+  stmt.BindInt64(6, camera.camera_id);
+  stmt.Execute();
+  if (sqlite3_changes(db_) != 1) {
+    ThrowError("database ", path_, " has no camera with id ", camera.camera_id);
+  }
+}
+
+void Database::ClearMatchesAndTwoViewGeometries() {
+  RequireWritable();
+  // One transaction, so a failure cannot leave matches without geometries.
+  Statement(db_, path_, "BEGIN IMMEDIATE").Execute();
+  try {
+    Statement(db_, path_, "DELETE FROM matches").Execute();
+    Statement(db_, path_, "DELETE FROM two_view_geometries").Execute();
+    Statement(db_, path_, "COMMIT").Execute();
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+}  // namespace colmap_gcn

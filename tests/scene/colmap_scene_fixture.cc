@@ -1,0 +1,155 @@
+#include "scene/colmap_scene_fixture.h"
+
+#include <sqlite3.h>
+
+#include <random>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "test_utils.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+namespace test {
+namespace {
+
+// Sum of upsampled noise at several scales plus random shapes: corners and
+// blobs at every scale give SIFT distinctive features, and the fixed seed
+// keeps runs reproducible.
+cv::Mat MakeTexture(const int width, const int height, const uint32_t seed) {
+  cv::RNG rng(seed);
+  cv::Mat texture(height, width, CV_32FC3, cv::Scalar::all(0));
+  for (const int cell : {64, 24, 8, 3}) {
+    cv::Mat noise(height / cell + 2, width / cell + 2, CV_32FC3);
+    rng.fill(noise, cv::RNG::UNIFORM, 0.0, 1.0);
+    cv::Mat upsampled;
+    cv::resize(
+        noise, upsampled, cv::Size(width, height), 0, 0, cv::INTER_CUBIC);
+    texture += upsampled * 64.0;
+  }
+  for (int i = 0; i < 250; ++i) {
+    const cv::Point center(rng.uniform(0, width), rng.uniform(0, height));
+    const cv::Scalar color(
+        rng.uniform(0, 255), rng.uniform(0, 255), rng.uniform(0, 255));
+    const int size = rng.uniform(4, 40);
+    if (i % 2 == 0) {
+      cv::circle(texture, center, size, color, cv::FILLED);
+    } else {
+      cv::rectangle(texture,
+                    center,
+                    center + cv::Point(size, size / 2 + 2),
+                    color,
+                    cv::FILLED);
+    }
+  }
+  cv::Mat image;
+  texture.convertTo(image, CV_8UC3);
+  return image;
+}
+
+}  // namespace
+
+std::vector<std::string> WriteOverlappingTestImages(
+    const std::string& image_dir,
+    const int num_images,
+    const int width,
+    const int height,
+    const int step_x,
+    const int step_y,
+    const uint32_t seed) {
+  CreateDirIfNotExists(image_dir);
+  const cv::Mat texture = MakeTexture(width + step_x * (num_images - 1),
+                                      height + step_y * (num_images - 1),
+                                      seed);
+  std::vector<std::string> names;
+  for (int i = 0; i < num_images; ++i) {
+    // Names deliberately not zero-padded, and written in reverse order, so
+    // that tests cannot rely on ids following name order.
+    const int index = num_images - 1 - i;
+    const std::string name = "view_" + std::to_string(index) + ".jpg";
+    const cv::Rect roi(index * step_x, index * step_y, width, height);
+    if (!cv::imwrite(JoinPaths(image_dir, name),
+                     texture(roi),
+                     {cv::IMWRITE_JPEG_QUALITY, 95})) {
+      ThrowError("cannot write test image ", name);
+    }
+    names.push_back(name);
+  }
+  return names;
+}
+
+bool RunColmapFeaturesAndMatching(const std::string& colmap_exe,
+                                  const std::string& image_dir,
+                                  const std::string& database_path,
+                                  std::string* log) {
+  const std::string extract =
+      ShellQuote(colmap_exe) + " feature_extractor --database_path " +
+      ShellQuote(database_path) + " --image_path " + ShellQuote(image_dir) +
+      " --ImageReader.single_camera 1 --SiftExtraction.use_gpu 0"
+      " --SiftExtraction.num_threads 2"
+      // No 2x upsampled octave and fewer features: ~1500 keypoints per
+      // image in about a second instead of five.
+      " --SiftExtraction.first_octave 0"
+      " --SiftExtraction.max_num_features 1000";
+  if (RunShell(extract, log) != 0) {
+    return false;
+  }
+  const std::string match = ShellQuote(colmap_exe) +
+                            " exhaustive_matcher --database_path " +
+                            ShellQuote(database_path) +
+                            " --SiftMatching.use_gpu 0"
+                            " --SiftMatching.num_threads 2";
+  return RunShell(match, log) == 0;
+}
+
+int64_t QuerySqlInt(const std::string& database_path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(
+          database_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) !=
+      SQLITE_OK) {
+    sqlite3_close(db);
+    ThrowError("test: cannot open ", database_path);
+  }
+  sqlite3_stmt* stmt = nullptr;
+  int64_t value = 0;
+  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt, nullptr) != SQLITE_OK) {
+    const std::string message = sqlite3_errmsg(db);
+    sqlite3_close(db);
+    ThrowError("test: bad SQL '", sql, "': ", message);
+  }
+  if (sqlite3_step(stmt) == SQLITE_ROW) {
+    value = sqlite3_column_int64(stmt, 0);
+  }
+  sqlite3_finalize(stmt);
+  sqlite3_close(db);
+  return value;
+}
+
+void ExecuteSql(const std::string& database_path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(database_path.c_str(),
+                      &db,
+                      SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
+                      nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    ThrowError("test: cannot open ", database_path);
+  }
+  char* error = nullptr;
+  // Test databases need no durability; skipping fsync keeps setup fast.
+  const std::string all_sql = "PRAGMA synchronous=OFF;" + sql;
+  if (sqlite3_exec(db, all_sql.c_str(), nullptr, nullptr, &error) !=
+      SQLITE_OK) {
+    const std::string message = error != nullptr ? error : "?";
+    sqlite3_free(error);
+    sqlite3_close(db);
+    ThrowError("test: SQL failed: ", message);
+  }
+  sqlite3_close(db);
+}
+
+}  // namespace test
+}  // namespace colmap_gcn
