@@ -11,6 +11,10 @@ PACKAGES=(
   # Database access, options, tests and benchmarks.
   libsqlite3-dev sqlite3 libboost-program-options-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # hloc global descriptors (HDF5); FAISS for approximate kNN at scale.
+  libhdf5-dev libfaiss-dev
+  # The PyTorch reference of the GCN (tests compare against it).
+  python3 python3-numpy python3-torch
   # Measuring whole commands; formatting.
   hyperfine time clang-format
 )
