@@ -1,0 +1,226 @@
+#include "gcn/gcn_inference.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <thread>
+
+#include "gcn/sgemm.h"
+#include "util/error.h"
+
+namespace colmap_gcn {
+namespace {
+
+float Sigmoid(float z) {
+  if (z >= 0) return 1.f / (1.f + std::exp(-z));
+  const float e = std::exp(z);
+  return e / (1.f + e);
+}
+
+void EnsureSize(std::vector<float>* buffer, size_t size) {
+  if (buffer->size() < size) buffer->resize(size);
+}
+
+}  // namespace
+
+int ResolveNumThreads(int num_threads) {
+  if (num_threads > 0) return num_threads;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+void ParallelFor(int n,
+                 int num_threads,
+                 const std::function<void(int index, int thread)>& fn) {
+  const int threads = std::min(ResolveNumThreads(num_threads), std::max(n, 1));
+  if (threads <= 1) {
+    for (int i = 0; i < n; ++i) fn(i, 0);
+    return;
+  }
+  std::atomic<int> next(0);
+  std::vector<std::exception_ptr> errors(threads);
+  std::vector<std::thread> workers;
+  for (int t = 0; t < threads; ++t) {
+    workers.emplace_back([&, t]() {
+      try {
+        for (int i = next++; i < n; i = next++) fn(i, t);
+      } catch (...) {
+        errors[t] = std::current_exception();
+        next = n;
+      }
+    });
+  }
+  for (auto& worker : workers) worker.join();
+  for (const auto& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+}
+
+GcnScorer::GcnScorer(const GcnModel& model,
+                     const EmbeddingMatrix& embeddings,
+                     int num_threads)
+    : model_(model), embeddings_(embeddings) {
+  model_.Check();
+  model_.CheckEmbeddingDimension(static_cast<int>(embeddings.cols()));
+  const int d = model_.shape.input_dim;
+  const int h1 = model_.shape.gcn_dims[0];
+  const auto w1 = model_.params.GcnWeight(0);  // 2d x h1
+  // W1 reshaped to d x 2h1: [W_self | W_agg], rows scaled by s.
+  RowMatrix<float> w(d, 2 * h1);
+  w.leftCols(h1) = w1.topRows(d);
+  w.rightCols(h1) = w1.bottomRows(d);
+  offset_ =
+      (model_.input_shift.cwiseProduct(model_.input_scale).transpose() * w)
+          .transpose();
+  for (int i = 0; i < d; ++i) w.row(i) *= model_.input_scale(i);
+  const long n = embeddings.rows();
+  projected_.resize(n, 2 * h1);
+  // In row blocks so that large collections can be projected in parallel.
+  constexpr int kBlock = 4096;
+  const int num_blocks = static_cast<int>((n + kBlock - 1) / kBlock);
+  ParallelFor(num_blocks, num_threads, [&](int block, int) {
+    const long begin = static_cast<long>(block) * kBlock;
+    const int rows = static_cast<int>(std::min<long>(kBlock, n - begin));
+    Sgemm(RowMajorView(embeddings.data() + begin * d, rows, d, d),
+          RowMajorView(w.data(), d, 2 * h1, 2 * h1),
+          0.f,
+          projected_.data() + begin * 2 * h1,
+          2 * h1);
+  });
+}
+
+void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
+                              GcnWorkspace* ws,
+                              std::vector<float>* logits) const {
+  const GcnShape& shape = model_.shape;
+  const GcnParameters<float>& params = model_.params;
+  const int num_layers = shape.NumGcnLayers();
+  const int n = subgraph.NumNodes();
+  const int n1 = subgraph.num_one_hop;
+  const AggregationMatrix g = ComputeAggregation(subgraph, model_.aggregation);
+  const std::vector<float> g1 = g.RowSums();
+
+  // Layer 1 from the projected embeddings.
+  const int h1 = shape.gcn_dims[0];
+  const long pstride = 2 * h1;
+  const int rows1 = num_layers == 1 ? n1 : n;
+  EnsureSize(&ws->a,
+             static_cast<size_t>(n) * *std::max_element(shape.gcn_dims.begin(),
+                                                        shape.gcn_dims.end()));
+  float* h = ws->a.data();
+  {
+    const float* pq = projected_.data() + subgraph.query * pstride;
+    const auto b1 = params.GcnBias(0);
+    std::vector<float> base_a(h1), base_b(h1);
+    for (int j = 0; j < h1; ++j) {
+      base_a[j] = b1(j) - pq[j] - offset_(j);
+      base_b[j] = pq[h1 + j] + offset_(h1 + j);
+    }
+    for (int i = 0; i < rows1; ++i) {
+      float* out = h + static_cast<long>(i) * h1;
+      const float* pa = projected_.data() + subgraph.nodes[i] * pstride;
+      const float gi = g1[i];
+      for (int j = 0; j < h1; ++j) out[j] = pa[j] + base_a[j] - gi * base_b[j];
+      for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+        const float w = g.values[e];
+        const float* pb =
+            projected_.data() + subgraph.nodes[g.columns[e]] * pstride + h1;
+        for (int j = 0; j < h1; ++j) out[j] += w * pb[j];
+      }
+      for (int j = 0; j < h1; ++j) out[j] = std::max(out[j], 0.f);
+    }
+  }
+
+  // Layers 2..L.
+  EnsureSize(&ws->b, ws->a.size());
+  float* h_next = ws->b.data();
+  for (int l = 1; l < num_layers; ++l) {
+    const int in = shape.LayerInputDim(l);
+    const int out = shape.gcn_dims[l];
+    const int rows = (l == num_layers - 1) ? n1 : n;
+    EnsureSize(&ws->cat, static_cast<size_t>(rows) * 2 * in);
+    float* cat = ws->cat.data();
+    for (int i = 0; i < rows; ++i) {
+      float* crow = cat + static_cast<long>(i) * 2 * in;
+      std::copy(h + static_cast<long>(i) * in,
+                h + static_cast<long>(i + 1) * in,
+                crow);
+      float* agg = crow + in;
+      std::fill(agg, agg + in, 0.f);
+      for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+        const float w = g.values[e];
+        const float* src = h + static_cast<long>(g.columns[e]) * in;
+        for (int j = 0; j < in; ++j) agg[j] += w * src[j];
+      }
+    }
+    const auto bias = params.GcnBias(l);
+    for (int i = 0; i < rows; ++i) {
+      std::copy(
+          bias.data(), bias.data() + out, h_next + static_cast<long>(i) * out);
+    }
+    const auto w = params.GcnWeight(l);
+    Sgemm(RowMajorView(cat, rows, 2 * in, 2 * in),
+          RowMajorView(w.data(), 2 * in, out, out),
+          1.f,
+          h_next,
+          out);
+    for (long i = 0; i < static_cast<long>(rows) * out; ++i) {
+      h_next[i] = std::max(h_next[i], 0.f);
+    }
+    std::swap(h, h_next);
+  }
+
+  // FC layers on the 1-hop rows.
+  const int dl = shape.gcn_dims.back();
+  const int fc = shape.fc_dim;
+  EnsureSize(&ws->cat, static_cast<size_t>(n1) * fc);
+  float* u = ws->cat.data();
+  const auto fc1_bias = params.Fc1Bias();
+  for (int i = 0; i < n1; ++i) {
+    std::copy(
+        fc1_bias.data(), fc1_bias.data() + fc, u + static_cast<long>(i) * fc);
+  }
+  Sgemm(RowMajorView(h, n1, dl, dl),
+        RowMajorView(params.Fc1Weight().data(), dl, fc, fc),
+        1.f,
+        u,
+        fc);
+  const auto prelu = params.Prelu();
+  const auto fc2 = params.Fc2Weight();
+  logits->resize(n1);
+  for (int i = 0; i < n1; ++i) {
+    const float* urow = u + static_cast<long>(i) * fc;
+    float z = params.Fc2Bias();
+    for (int j = 0; j < fc; ++j) {
+      const float v = urow[j] > 0 ? urow[j] : prelu(j) * urow[j];
+      z += v * fc2(j);
+    }
+    (*logits)[i] = z;
+  }
+}
+
+std::vector<std::vector<float>> ScoreAllQueries(
+    const GcnModel& model,
+    const EmbeddingMatrix& embeddings,
+    const KnnGraph& knn,
+    const QesOptions& qes,
+    int num_threads) {
+  const GcnScorer scorer(model, embeddings, num_threads);
+  const int n = knn.NumImages();
+  const int threads = ResolveNumThreads(num_threads);
+  std::vector<std::unique_ptr<QesBuilder>> builders(threads);
+  std::vector<GcnWorkspace> workspaces(threads);
+  std::vector<QuerySubgraph> subgraphs(threads);
+  std::vector<std::vector<float>> scores(n);
+  ParallelFor(n, threads, [&](int q, int t) {
+    if (!builders[t]) builders[t] = std::make_unique<QesBuilder>(knn, qes);
+    builders[t]->Build(q, &subgraphs[t]);
+    std::vector<float> logits;
+    scorer.ScoreSubgraph(subgraphs[t], &workspaces[t], &logits);
+    for (float& z : logits) z = Sigmoid(z);
+    scores[q] = std::move(logits);
+  });
+  return scores;
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,344 @@
+#include "gcn/model_file.h"
+
+#include <cstring>
+#include <map>
+
+#include "util/error.h"
+#include "util/file.h"
+
+namespace colmap_gcn {
+namespace {
+
+constexpr char kMagic[8] = {'C', 'G', 'C', 'N', 'M', 'O', 'D', 'L'};
+constexpr size_t kHeaderSize = 24;
+
+static_assert(sizeof(float) == 4, "float must be 32-bit");
+
+bool IsLittleEndian() {
+  const uint16_t one = 1;
+  unsigned char byte;
+  std::memcpy(&byte, &one, 1);
+  return byte == 1;
+}
+
+class Writer {
+ public:
+  template <typename T>
+  void Put(const T& value) {
+    static_assert(std::is_trivially_copyable<T>::value, "POD only");
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  void PutFloats(const float* data, size_t count) {
+    bytes_.append(reinterpret_cast<const char*>(data), count * sizeof(float));
+  }
+  void PutString(const std::string& s) {
+    Put<uint64_t>(s.size());
+    bytes_.append(s);
+  }
+  void PutSection(const char tag[4], const std::string& body) {
+    bytes_.append(tag, 4);
+    Put<uint64_t>(body.size());
+    bytes_.append(body);
+  }
+  std::string& Bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& bytes,
+         size_t begin,
+         size_t end,
+         const std::string& source,
+         const std::string& what)
+      : bytes_(bytes), pos_(begin), end_(end), source_(source), what_(what) {}
+
+  template <typename T>
+  T Get() {
+    Need(sizeof(T));
+    T value;
+    std::memcpy(&value, bytes_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return value;
+  }
+  void GetFloats(float* data, size_t count) {
+    if (count > (end_ - pos_) / sizeof(float)) Fail();
+    std::memcpy(data, bytes_.data() + pos_, count * sizeof(float));
+    pos_ += count * sizeof(float);
+  }
+  std::string GetString() {
+    const uint64_t size = Get<uint64_t>();
+    if (size > end_ - pos_) Fail();
+    std::string s = bytes_.substr(pos_, size);
+    pos_ += size;
+    return s;
+  }
+  int GetPositiveInt(const char* name, int max_value) {
+    const int32_t value = Get<int32_t>();
+    if (value <= 0 || value > max_value) {
+      ThrowError("GCN model file ",
+                 source_,
+                 " has an invalid ",
+                 name,
+                 " (",
+                 value,
+                 ")");
+    }
+    return value;
+  }
+  void ExpectEnd() {
+    if (pos_ != end_) Fail();
+  }
+
+ private:
+  void Need(size_t size) {
+    if (size > end_ - pos_) Fail();
+  }
+  [[noreturn]] void Fail() {
+    ThrowError("GCN model file ", source_, ": malformed ", what_, " section");
+  }
+
+  const std::string& bytes_;
+  size_t pos_;
+  size_t end_;
+  const std::string& source_;
+  std::string what_;
+};
+
+}  // namespace
+
+uint64_t Fnv1a64(const char* data, size_t size) {
+  uint64_t hash = 14695981039346656037ull;
+  for (size_t i = 0; i < size; ++i) {
+    hash ^= static_cast<unsigned char>(data[i]);
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::string SerializeGcnModel(const GcnModel& model) {
+  if (!IsLittleEndian())
+    ThrowError("GCN model files need a little-endian host");
+  model.Check();
+  Writer payload;
+  {
+    Writer s;
+    s.PutString(model.embedding.type);
+    s.Put<int32_t>(model.shape.input_dim);
+    s.PutString(model.embedding.blob);
+    payload.PutSection("EMBD", s.Bytes());
+  }
+  {
+    Writer s;
+    s.Put<int32_t>(model.shape.input_dim);
+    s.Put<int32_t>(model.shape.NumGcnLayers());
+    for (int dim : model.shape.gcn_dims) s.Put<int32_t>(dim);
+    s.Put<int32_t>(model.shape.fc_dim);
+    s.Put<int32_t>(static_cast<int32_t>(model.aggregation));
+    payload.PutSection("NETS", s.Bytes());
+  }
+  {
+    Writer s;
+    s.PutFloats(model.input_shift.data(), model.input_shift.size());
+    s.PutFloats(model.input_scale.data(), model.input_scale.size());
+    payload.PutSection("NORM", s.Bytes());
+  }
+  {
+    Writer s;
+    s.Put<uint64_t>(model.params.Size());
+    s.PutFloats(model.params.Values().data(), model.params.Size());
+    payload.PutSection("WGTS", s.Bytes());
+  }
+  {
+    Writer s;
+    s.Put<float>(model.info.tau_mo);
+    s.Put<float>(model.info.tau_ct);
+    s.Put<int32_t>(model.info.test_k1);
+    s.Put<int32_t>(model.info.test_k2);
+    s.Put<int32_t>(model.info.test_u);
+    s.Put<float>(model.info.threshold);
+    payload.PutSection("INFO", s.Bytes());
+  }
+  {
+    Writer s;
+    s.PutString(model.info.notes);
+    payload.PutSection("NOTE", s.Bytes());
+  }
+  Writer file;
+  file.Bytes().append(kMagic, sizeof(kMagic));
+  file.Put<uint32_t>(kGcnModelFormatVersion);
+  file.Put<uint32_t>(0);
+  file.Put<uint64_t>(payload.Bytes().size());
+  file.Bytes().append(payload.Bytes());
+  file.Put<uint64_t>(Fnv1a64(payload.Bytes().data(), payload.Bytes().size()));
+  return file.Bytes();
+}
+
+GcnModel DeserializeGcnModel(const std::string& bytes,
+                             const std::string& source) {
+  if (!IsLittleEndian())
+    ThrowError("GCN model files need a little-endian host");
+  if (bytes.size() < sizeof(kMagic) ||
+      std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
+    ThrowError(source, " is not a GCN model file (bad magic)");
+  }
+  if (bytes.size() < kHeaderSize) {
+    ThrowError(
+        "GCN model file ", source, " is truncated (", bytes.size(), " bytes)");
+  }
+  uint32_t version;
+  std::memcpy(&version, bytes.data() + 8, 4);
+  if (version != kGcnModelFormatVersion) {
+    ThrowError("GCN model file ",
+               source,
+               " has format version ",
+               version,
+               "; this build reads version ",
+               kGcnModelFormatVersion);
+  }
+  uint64_t payload_size;
+  std::memcpy(&payload_size, bytes.data() + 16, 8);
+  const uint64_t expected_size = kHeaderSize + payload_size + 8;
+  if (payload_size > bytes.size() || bytes.size() < expected_size) {
+    ThrowError("GCN model file ",
+               source,
+               " is truncated (",
+               bytes.size(),
+               " of ",
+               expected_size,
+               " bytes)");
+  }
+  if (bytes.size() > expected_size) {
+    ThrowError("GCN model file ",
+               source,
+               " has ",
+               bytes.size() - expected_size,
+               " trailing bytes");
+  }
+  uint64_t checksum;
+  std::memcpy(&checksum, bytes.data() + kHeaderSize + payload_size, 8);
+  if (checksum != Fnv1a64(bytes.data() + kHeaderSize, payload_size)) {
+    ThrowError("GCN model file ", source, " is corrupt (checksum mismatch)");
+  }
+
+  // Split the payload into sections.
+  std::map<std::string, std::pair<size_t, size_t>> sections;
+  {
+    size_t pos = kHeaderSize;
+    const size_t end = kHeaderSize + payload_size;
+    while (pos < end) {
+      if (end - pos < 12) {
+        ThrowError("GCN model file ", source, ": malformed section header");
+      }
+      const std::string tag = bytes.substr(pos, 4);
+      uint64_t length;
+      std::memcpy(&length, bytes.data() + pos + 4, 8);
+      pos += 12;
+      if (length > end - pos) {
+        ThrowError("GCN model file ",
+                   source,
+                   ": section ",
+                   tag,
+                   " overruns the payload");
+      }
+      sections[tag] = {pos, pos + length};
+      pos += length;
+    }
+  }
+  auto section = [&](const char* tag) {
+    auto it = sections.find(tag);
+    if (it == sections.end()) {
+      ThrowError("GCN model file ", source, " lacks the ", tag, " section");
+    }
+    return Reader(bytes, it->second.first, it->second.second, source, tag);
+  };
+
+  GcnModel model;
+  {
+    Reader r = section("NETS");
+    model.shape.input_dim = r.GetPositiveInt("input dimension", 1 << 20);
+    const int layers = r.GetPositiveInt("layer count", 64);
+    model.shape.gcn_dims.clear();
+    for (int l = 0; l < layers; ++l) {
+      model.shape.gcn_dims.push_back(r.GetPositiveInt("layer size", 1 << 16));
+    }
+    model.shape.fc_dim = r.GetPositiveInt("FC size", 1 << 16);
+    const int32_t aggregation = r.Get<int32_t>();
+    if (aggregation != 0 && aggregation != 1) {
+      ThrowError("GCN model file ",
+                 source,
+                 " has an unknown aggregation ",
+                 aggregation);
+    }
+    model.aggregation = static_cast<GcnAggregation>(aggregation);
+    r.ExpectEnd();
+  }
+  {
+    Reader r = section("EMBD");
+    model.embedding.type = r.GetString();
+    model.embedding.dim = r.Get<int32_t>();
+    model.embedding.blob = r.GetString();
+    r.ExpectEnd();
+    if (model.embedding.dim != model.shape.input_dim) {
+      ThrowError("GCN model file ",
+                 source,
+                 ": embedding dimension ",
+                 model.embedding.dim,
+                 " differs from the network input ",
+                 model.shape.input_dim);
+    }
+  }
+  {
+    Reader r = section("NORM");
+    model.input_shift.resize(model.shape.input_dim);
+    model.input_scale.resize(model.shape.input_dim);
+    r.GetFloats(model.input_shift.data(), model.shape.input_dim);
+    r.GetFloats(model.input_scale.data(), model.shape.input_dim);
+    r.ExpectEnd();
+  }
+  {
+    Reader r = section("WGTS");
+    model.params = GcnParameters<float>(model.shape);
+    const uint64_t count = r.Get<uint64_t>();
+    if (count != model.params.Size()) {
+      ThrowError("GCN model file ",
+                 source,
+                 " has ",
+                 count,
+                 " weights but its network shape needs ",
+                 model.params.Size());
+    }
+    r.GetFloats(model.params.Values().data(), count);
+    r.ExpectEnd();
+  }
+  {
+    Reader r = section("INFO");
+    model.info.tau_mo = r.Get<float>();
+    model.info.tau_ct = r.Get<float>();
+    model.info.test_k1 = r.Get<int32_t>();
+    model.info.test_k2 = r.Get<int32_t>();
+    model.info.test_u = r.Get<int32_t>();
+    model.info.threshold = r.Get<float>();
+    r.ExpectEnd();
+  }
+  if (sections.count("NOTE")) {
+    Reader r = section("NOTE");
+    model.info.notes = r.GetString();
+    r.ExpectEnd();
+  }
+  model.Check();
+  return model;
+}
+
+void WriteGcnModel(const std::string& path, const GcnModel& model) {
+  WriteFileAtomically(path, SerializeGcnModel(model));
+}
+
+GcnModel ReadGcnModel(const std::string& path) {
+  if (!ExistsFile(path)) ThrowError("GCN model file ", path, " does not exist");
+  return DeserializeGcnModel(ReadTextFile(path), path);
+}
+
+}  // namespace colmap_gcn

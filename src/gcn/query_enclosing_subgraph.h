@@ -1,0 +1,97 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "retrieval/knn.h"
+
+namespace colmap_gcn {
+
+// Query Enclosing Subgraph (QES) parameters, paper Sec. 3.2.
+struct QesOptions {
+  // 1-hop neighbours of the query (the candidates that get classified).
+  int k1 = 100;
+  // Neighbours added for every 1-hop node (2-hop nodes).
+  int k2 = 5;
+  // Edges: every node links to those of its u nearest neighbours in the whole
+  // collection that lie in the subgraph.
+  int u = 5;
+
+  bool Check() const;
+  // Largest neighbour count the kNN graph must provide: max(k1, k2, u).
+  int RequiredK() const;
+};
+
+// How the adjacency A of a QES is normalised into the aggregation matrix G.
+enum class GcnAggregation : int {
+  // G = L^-1/2 A L^-1/2 with L = diag(row sums of A): the paper's Sec. 3.3.
+  kSymmetric = 0,
+  // G = L^-1 A (mean over neighbours): what gcn_clustering implements.
+  kRowNormalized = 1,
+};
+
+const char* GcnAggregationName(GcnAggregation aggregation);
+
+// The nodes and undirected edges of one QES. Nodes are collection indices;
+// nodes[0, num_one_hop) are the 1-hop nodes in kNN order, the rest the 2-hop
+// nodes in discovery order (1-hop node by 1-hop node, each in kNN order).
+// The query itself is never a node. The adjacency is symmetric, without self
+// loops, stored as sorted neighbour lists (CSR over local node indices).
+struct QuerySubgraph {
+  int query = -1;
+  int num_one_hop = 0;
+  std::vector<int> nodes;
+  std::vector<int> adjacency_offsets;  // size NumNodes() + 1
+  std::vector<int> adjacency;          // local node indices
+
+  int NumNodes() const { return static_cast<int>(nodes.size()); }
+  int Degree(int local) const {
+    return adjacency_offsets[local + 1] - adjacency_offsets[local];
+  }
+  // Dense 0/1 adjacency (tests and the reference path).
+  Eigen::MatrixXf DenseAdjacency() const;
+};
+
+// Sparse aggregation matrix G (CSR, same pattern as the adjacency). Isolated
+// nodes (degree 0) have an all-zero row and column, so their aggregated
+// feature (G X)_i is 0.
+struct AggregationMatrix {
+  int num_nodes = 0;
+  std::vector<int> offsets;  // size num_nodes + 1
+  std::vector<int> columns;
+  std::vector<float> values;
+
+  // G 1: row sums (1 or 0 for row-normalised G).
+  std::vector<float> RowSums() const;
+  Eigen::MatrixXf Dense() const;
+};
+
+AggregationMatrix ComputeAggregation(const QuerySubgraph& subgraph,
+                                     GcnAggregation aggregation);
+
+// Builds QESs over one kNN graph. Keeps an O(N) scratch index map, so reuse
+// one builder per thread for many queries.
+class QesBuilder {
+ public:
+  // The kNN graph must outlive the builder and have K() >= RequiredK().
+  QesBuilder(const KnnGraph& knn, const QesOptions& options);
+
+  void Build(int query, QuerySubgraph* subgraph);
+
+ private:
+  const KnnGraph& knn_;
+  const QesOptions options_;
+  std::vector<int> local_index_;  // collection index -> local index or -1
+};
+
+QuerySubgraph BuildQuerySubgraph(const KnnGraph& knn,
+                                 int query,
+                                 const QesOptions& options);
+
+// Node features of a QES, paper Eq. 2: row i = e(nodes[i]) - e(query).
+Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+QesFeatures(const QuerySubgraph& subgraph, const EmbeddingMatrix& embeddings);
+
+}  // namespace colmap_gcn
