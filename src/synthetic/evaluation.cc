@@ -1,0 +1,188 @@
+#include "synthetic/evaluation.h"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include <Eigen/Geometry>
+
+#include "util/error.h"
+#include "util/file.h"
+
+namespace colmap_gcn {
+
+PoseAlignmentResult AlignToGroundTruth(const Reconstruction& ground_truth,
+                                       const Reconstruction& model) {
+  PoseAlignmentResult result;
+  result.num_gt_images = static_cast<int>(ground_truth.images.size());
+  std::vector<Eigen::Vector3d> gt_centers;
+  for (const auto& [id, image] : ground_truth.images) {
+    gt_centers.push_back(image.ProjectionCenter());
+  }
+  for (size_t i = 0; i < gt_centers.size(); ++i) {
+    for (size_t j = i + 1; j < gt_centers.size(); ++j) {
+      result.scene_size =
+          std::max(result.scene_size, (gt_centers[i] - gt_centers[j]).norm());
+    }
+  }
+  std::vector<Eigen::Vector3d> src;
+  std::vector<Eigen::Vector3d> dst;
+  for (const auto& [id, image] : model.images) {
+    const image_t gt_id = ground_truth.FindImageWithName(image.name);
+    if (gt_id == kInvalidImageId) {
+      continue;
+    }
+    src.push_back(image.ProjectionCenter());
+    dst.push_back(ground_truth.images.at(gt_id).ProjectionCenter());
+  }
+  result.num_registered = static_cast<int>(src.size());
+  if (src.size() < 3) {
+    ThrowError("cannot align: only ",
+               src.size(),
+               " model images are in the ground truth");
+  }
+  Eigen::Matrix3Xd src_matrix(3, src.size());
+  Eigen::Matrix3Xd dst_matrix(3, dst.size());
+  for (size_t i = 0; i < src.size(); ++i) {
+    src_matrix.col(i) = src[i];
+    dst_matrix.col(i) = dst[i];
+  }
+  const Eigen::Matrix4d transform =
+      Eigen::umeyama(src_matrix, dst_matrix, true);
+  result.scale = transform.block<3, 1>(0, 0).norm();
+  std::vector<double> errors;
+  for (size_t i = 0; i < src.size(); ++i) {
+    const Eigen::Vector3d aligned =
+        transform.block<3, 3>(0, 0) * src[i] + transform.block<3, 1>(0, 3);
+    errors.push_back((aligned - dst[i]).norm());
+  }
+  std::sort(errors.begin(), errors.end());
+  const size_t n = errors.size();
+  result.median_position_error =
+      n % 2 == 1 ? errors[n / 2] : 0.5 * (errors[n / 2 - 1] + errors[n / 2]);
+  result.max_position_error = errors.back();
+  return result;
+}
+
+Reconstruction ReadLargestModel(const std::string& sparse_path) {
+  Reconstruction best;
+  bool found = false;
+  for (int k = 0; k < 1000; ++k) {
+    const std::string path = JoinPaths(sparse_path, std::to_string(k));
+    if (!ExistsDir(path)) {
+      break;
+    }
+    Reconstruction model;
+    model.Read(path);
+    if (!found || model.images.size() > best.images.size()) {
+      best = std::move(model);
+      found = true;
+    }
+  }
+  if (!found) {
+    ThrowError("no model in ", sparse_path);
+  }
+  return best;
+}
+
+bool TwoViewGeometryRow::IsVerified(int min_num_inliers) const {
+  const bool good_config = config == 2 || config == 3 || config == 4 ||
+                           config == 5 || config == 6 || config == 8;
+  return good_config && num_inliers >= min_num_inliers;
+}
+
+std::vector<TwoViewGeometryRow> ReadTwoViewGeometries(
+    const std::string& database_path) {
+  if (!ExistsFile(database_path)) {
+    ThrowError("database ", database_path, " does not exist");
+  }
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(
+          database_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) !=
+      SQLITE_OK) {
+    const std::string message = db ? sqlite3_errmsg(db) : "out of memory";
+    sqlite3_close(db);
+    ThrowError("cannot open database ", database_path, ": ", message);
+  }
+  auto fail = [&](const std::string& what) {
+    const std::string message = sqlite3_errmsg(db);
+    sqlite3_close(db);
+    ThrowError("cannot read ", what, " from ", database_path, ": ", message);
+  };
+  std::map<int64_t, std::string> names;
+  sqlite3_stmt* stmt = nullptr;
+  if (sqlite3_prepare_v2(
+          db, "SELECT image_id, name FROM images;", -1, &stmt, nullptr) !=
+      SQLITE_OK) {
+    fail("images");
+  }
+  while (sqlite3_step(stmt) == SQLITE_ROW) {
+    const unsigned char* name = sqlite3_column_text(stmt, 1);
+    names[sqlite3_column_int64(stmt, 0)] =
+        name ? reinterpret_cast<const char*>(name) : "";
+  }
+  sqlite3_finalize(stmt);
+  if (sqlite3_prepare_v2(db,
+                         "SELECT pair_id, rows, config FROM "
+                         "two_view_geometries;",
+                         -1,
+                         &stmt,
+                         nullptr) != SQLITE_OK) {
+    fail("two_view_geometries");
+  }
+  std::vector<TwoViewGeometryRow> rows;
+  const int64_t kMaxNumImages = 2147483647;
+  while (sqlite3_step(stmt) == SQLITE_ROW) {
+    const int64_t pair_id = sqlite3_column_int64(stmt, 0);
+    const int64_t id2 = pair_id % kMaxNumImages;
+    const int64_t id1 = (pair_id - id2) / kMaxNumImages;
+    TwoViewGeometryRow row;
+    row.name1 = names.count(id1) ? names[id1] : "";
+    row.name2 = names.count(id2) ? names[id2] : "";
+    row.num_inliers = sqlite3_column_int(stmt, 1);
+    row.config = sqlite3_column_int(stmt, 2);
+    rows.push_back(row);
+  }
+  sqlite3_finalize(stmt);
+  sqlite3_close(db);
+  return rows;
+}
+
+OverlapAgreement CompareOverlapWithVerification(
+    const PairOverlapTable& table,
+    const std::vector<TwoViewGeometryRow>& geometries,
+    const std::vector<std::string>& distractor_names,
+    double threshold,
+    int min_num_inliers) {
+  std::set<std::pair<std::string, std::string>> verified;
+  for (const TwoViewGeometryRow& row : geometries) {
+    if (row.IsVerified(min_num_inliers)) {
+      verified.emplace(row.name1, row.name2);
+      verified.emplace(row.name2, row.name1);
+    }
+  }
+  const std::set<std::string> distractors(distractor_names.begin(),
+                                          distractor_names.end());
+  OverlapAgreement agreement;
+  for (const PairOverlap& pair : table.Pairs()) {
+    const bool is_verified = verified.count({pair.name1, pair.name2}) > 0;
+    agreement.num_verified += is_verified;
+    if (distractors.count(pair.name1) || distractors.count(pair.name2)) {
+      ++agreement.num_distractor_pairs;
+      agreement.num_distractor_verified += is_verified;
+      continue;
+    }
+    if (pair.num_shared == 0) {
+      ++agreement.num_zero_pairs;
+      agreement.num_zero_verified += is_verified;
+    } else if (pair.MinOverlap() >= threshold) {
+      ++agreement.num_overlap_pairs;
+      agreement.num_overlap_verified += is_verified;
+    }
+  }
+  return agreement;
+}
+
+}  // namespace colmap_gcn

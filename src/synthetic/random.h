@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+namespace colmap_gcn {
+
+// A small, platform-independent random number generator (SplitMix64) with
+// its own distributions, so that synthetic scenes are byte-identical across
+// standard libraries (std::uniform_*_distribution are implementation-defined).
+class SyntheticRandom {
+ public:
+  explicit SyntheticRandom(uint64_t seed) : state_(seed) {}
+
+  // A generator for a sub-stream, e.g. SyntheticRandom(Mix(seed, image_idx)).
+  static uint64_t Mix(uint64_t a, uint64_t b) {
+    uint64_t z = a * 0x9E3779B97F4A7C15ULL + b + 0x632BE59BD9B4E019ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+
+  uint64_t Next() {
+    uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+
+  // Uniform in [0, 1).
+  double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+  double Uniform(double a, double b) { return a + (b - a) * Uniform(); }
+  // Uniform integer in [a, b] (inclusive).
+  int UniformInt(int a, int b) {
+    return a + static_cast<int>(Next() % static_cast<uint64_t>(b - a + 1));
+  }
+  // Standard normal (Box-Muller, one value per call).
+  double Normal() {
+    const double u1 = 1.0 - Uniform();  // (0, 1]
+    const double u2 = Uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  }
+
+ private:
+  uint64_t state_;
+};
+
+}  // namespace colmap_gcn
