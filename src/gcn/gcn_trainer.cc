@@ -1,0 +1,544 @@
+#include "gcn/gcn_trainer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <unordered_set>
+
+#include "gcn/gcn_inference.h"
+#include "gcn/gcn_network.h"
+#include "util/error.h"
+#include "util/timer.h"
+
+namespace colmap_gcn {
+namespace {
+
+struct PreparedScene {
+  const GcnTrainingScene* scene = nullptr;
+  KnnGraph knn;
+  QesOptions qes;
+  std::unordered_set<uint64_t> positives;
+
+  bool IsPositive(int i, int j) const {
+    const uint64_t a = static_cast<uint64_t>(std::min(i, j));
+    const uint64_t b = static_cast<uint64_t>(std::max(i, j));
+    return positives.count((a << 32) | b) > 0;
+  }
+};
+
+struct Sample {
+  int scene;
+  int query;
+};
+
+PreparedScene PrepareScene(const GcnTrainingScene& scene,
+                           const QesOptions& qes,
+                           int num_threads) {
+  const int n = static_cast<int>(scene.embeddings.rows());
+  if (n < 2) {
+    ThrowError("training scene '",
+               scene.name,
+               "' has ",
+               n,
+               " images; at least 2 are needed");
+  }
+  PreparedScene prepared;
+  prepared.scene = &scene;
+  prepared.qes = CapQesOptions(qes, n);
+  prepared.knn = ComputeKnnForQes(scene.embeddings, prepared.qes, num_threads);
+  for (const auto& [i, j] : scene.positive_pairs) {
+    if (i < 0 || j < 0 || i >= n || j >= n) {
+      ThrowError("training scene '",
+                 scene.name,
+                 "' has a positive pair (",
+                 i,
+                 ", ",
+                 j,
+                 ") outside its ",
+                 n,
+                 " images");
+    }
+    if (i == j) continue;
+    const uint64_t a = static_cast<uint64_t>(std::min(i, j));
+    const uint64_t b = static_cast<uint64_t>(std::max(i, j));
+    prepared.positives.insert((a << 32) | b);
+  }
+  return prepared;
+}
+
+// Per-thread QES builders, one per scene, created lazily.
+class BuilderPool {
+ public:
+  BuilderPool(const std::vector<PreparedScene>& scenes, int num_threads)
+      : scenes_(scenes), builders_(num_threads) {
+    for (auto& per_thread : builders_) per_thread.resize(scenes.size());
+  }
+  QesBuilder& Get(int thread, int scene) {
+    auto& builder = builders_[thread][scene];
+    if (!builder) {
+      builder =
+          std::make_unique<QesBuilder>(scenes_[scene].knn, scenes_[scene].qes);
+    }
+    return *builder;
+  }
+
+ private:
+  const std::vector<PreparedScene>& scenes_;
+  std::vector<std::vector<std::unique_ptr<QesBuilder>>> builders_;
+};
+
+GcnGraph<float> MakeSampleGraph(const GcnModel& model,
+                                const PreparedScene& scene,
+                                int query,
+                                QesBuilder* builder) {
+  QuerySubgraph subgraph;
+  builder->Build(query, &subgraph);
+  GcnGraph<float> graph =
+      MakeGcnGraph(model, subgraph, scene.scene->embeddings);
+  graph.labels.resize(subgraph.num_one_hop);
+  for (int i = 0; i < subgraph.num_one_hop; ++i) {
+    graph.labels[i] = scene.IsPositive(query, subgraph.nodes[i]) ? 1 : 0;
+  }
+  return graph;
+}
+
+void AddPredictions(const ColVector<float>& logits,
+                    const std::vector<uint8_t>& labels,
+                    float threshold,
+                    GcnClassificationStats* stats) {
+  for (int i = 0; i < logits.size(); ++i) {
+    const float p = 1.f / (1.f + std::exp(-logits(i)));
+    const bool predicted = p >= threshold;
+    if (predicted && labels[i]) ++stats->true_positives;
+    if (predicted && !labels[i]) ++stats->false_positives;
+    if (!predicted && labels[i]) ++stats->false_negatives;
+  }
+  stats->num_nodes += logits.size();
+}
+
+void Accumulate(const GcnClassificationStats& in, GcnClassificationStats* out) {
+  out->loss += in.loss;
+  out->num_nodes += in.num_nodes;
+  out->true_positives += in.true_positives;
+  out->false_positives += in.false_positives;
+  out->false_negatives += in.false_negatives;
+}
+
+// Forward only; loss is the mean over nodes.
+GcnClassificationStats EvaluateSamples(const GcnModel& model,
+                                       const std::vector<PreparedScene>& scenes,
+                                       const std::vector<Sample>& samples,
+                                       float positive_weight,
+                                       float threshold,
+                                       int num_threads,
+                                       BuilderPool* pool) {
+  std::vector<GcnClassificationStats> per_sample(samples.size());
+  ParallelFor(
+      static_cast<int>(samples.size()), num_threads, [&](int s, int thread) {
+        const Sample& sample = samples[s];
+        const GcnGraph<float> graph =
+            MakeSampleGraph(model,
+                            scenes[sample.scene],
+                            sample.query,
+                            &pool->Get(thread, sample.scene));
+        ColVector<float> logits;
+        per_sample[s].loss = GcnLossAndGradient<float>(
+            model.params, graph, positive_weight, nullptr, &logits);
+        AddPredictions(logits, graph.labels, threshold, &per_sample[s]);
+      });
+  GcnClassificationStats total;
+  for (const auto& stats : per_sample) Accumulate(stats, &total);
+  if (total.num_nodes > 0) total.loss /= static_cast<double>(total.num_nodes);
+  return total;
+}
+
+std::string FormatStats(const GcnClassificationStats& s) {
+  char buffer[128];
+  std::snprintf(buffer,
+                sizeof(buffer),
+                "loss %.4f P %.3f R %.3f F %.3f",
+                s.loss,
+                s.Precision(),
+                s.Recall(),
+                s.F());
+  return buffer;
+}
+
+}  // namespace
+
+bool GcnTrainingOptions::Check() const {
+  return shape.Check() && qes.Check() && test_qes.Check() &&
+         (optimizer == "sgd" || optimizer == "adam") && learning_rate > 0 &&
+         momentum >= 0 && weight_decay >= 0 && batch_size >= 1 &&
+         num_epochs >= 1 && lr_decay_factor > 0 && validation_fraction >= 0 &&
+         validation_fraction < 1 && early_stopping_patience >= 0 &&
+         standardization_samples >= 1 && threshold > 0 && threshold < 1;
+}
+
+double GcnClassificationStats::Precision() const {
+  const int64_t predicted = true_positives + false_positives;
+  return predicted > 0 ? static_cast<double>(true_positives) / predicted : 0.0;
+}
+
+double GcnClassificationStats::Recall() const {
+  const int64_t actual = true_positives + false_negatives;
+  return actual > 0 ? static_cast<double>(true_positives) / actual : 0.0;
+}
+
+double GcnClassificationStats::F() const {
+  const double p = Precision();
+  const double r = Recall();
+  return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
+}
+
+QesOptions CapQesOptions(const QesOptions& qes, int num_images) {
+  QesOptions capped = qes;
+  const int max_k = std::max(num_images - 1, 0);
+  capped.k1 = std::min(capped.k1, max_k);
+  capped.k2 = std::min(capped.k2, max_k);
+  capped.u = std::min(capped.u, max_k);
+  return capped;
+}
+
+KnnGraph ComputeKnnForQes(const EmbeddingMatrix& embeddings,
+                          const QesOptions& qes,
+                          int num_threads) {
+  KnnOptions knn_options;
+  knn_options.k = std::min(
+      qes.RequiredK(), std::max(static_cast<int>(embeddings.rows()) - 1, 1));
+  knn_options.num_threads = num_threads;
+  return ComputeExactKnn(embeddings, knn_options);
+}
+
+void PrintGcnTrainingLog(const std::string& line) {
+  std::cout << line << std::endl;
+}
+
+GcnTrainer::GcnTrainer(const GcnTrainingOptions& options) : options_(options) {}
+
+GcnModel GcnTrainer::Train(
+    const std::vector<GcnTrainingScene>& scenes,
+    const std::vector<GcnTrainingScene>& validation_scenes) {
+  const GcnTrainingOptions& o = options_;
+  if (!o.Check()) ThrowError("invalid GCN training options");
+  if (scenes.empty()) ThrowError("no training scenes");
+  auto log = [&](const std::string& line) {
+    if (o.log) o.log(line);
+  };
+  const int threads = ResolveNumThreads(o.num_threads);
+  const int dim = static_cast<int>(scenes[0].embeddings.cols());
+  for (const auto* list : {&scenes, &validation_scenes}) {
+    for (const auto& scene : *list) {
+      if (scene.embeddings.cols() != dim) {
+        ThrowError("training scene '",
+                   scene.name,
+                   "' has ",
+                   scene.embeddings.cols(),
+                   "-dimensional embeddings, expected ",
+                   dim);
+      }
+    }
+  }
+  history_.clear();
+  Timer total_timer;
+
+  // Scenes, kNN graphs and samples.
+  std::vector<PreparedScene> prepared;
+  for (const auto& scene : scenes) {
+    prepared.push_back(PrepareScene(scene, o.qes, threads));
+  }
+  for (const auto& scene : validation_scenes) {
+    prepared.push_back(PrepareScene(scene, o.qes, threads));
+  }
+  std::vector<Sample> train_samples;
+  std::vector<Sample> val_samples;
+  std::mt19937 rng(o.seed);
+  for (size_t s = 0; s < prepared.size(); ++s) {
+    const int n = static_cast<int>(prepared[s].scene->embeddings.rows());
+    for (int q = 0; q < n; ++q) {
+      (s < scenes.size() ? train_samples : val_samples)
+          .push_back({static_cast<int>(s), q});
+    }
+  }
+  if (validation_scenes.empty() && o.validation_fraction > 0) {
+    std::shuffle(train_samples.begin(), train_samples.end(), rng);
+    const size_t num_val = static_cast<size_t>(
+        std::round(o.validation_fraction * train_samples.size()));
+    val_samples.assign(train_samples.end() - num_val, train_samples.end());
+    train_samples.resize(train_samples.size() - num_val);
+    auto by_index = [](const Sample& a, const Sample& b) {
+      return a.scene != b.scene ? a.scene < b.scene : a.query < b.query;
+    };
+    std::sort(train_samples.begin(), train_samples.end(), by_index);
+    std::sort(val_samples.begin(), val_samples.end(), by_index);
+  }
+  if (train_samples.empty()) ThrowError("no training samples");
+
+  GcnShape shape = o.shape;
+  shape.input_dim = dim;
+  GcnModel model = InitializeGcnModel(shape, o.aggregation, o.seed);
+  BuilderPool pool(prepared, threads);
+
+  // Input standardisation from a sample of training subgraphs (the fixed
+  // counterpart of gcn_clustering's BatchNorm1d without affine).
+  {
+    std::vector<Sample> sampled = train_samples;
+    std::mt19937 srng(o.seed + 1);
+    std::shuffle(sampled.begin(), sampled.end(), srng);
+    sampled.resize(std::min<size_t>(sampled.size(), o.standardization_samples));
+    std::vector<Eigen::VectorXd> sums(sampled.size()), squares(sampled.size());
+    std::vector<int64_t> counts(sampled.size(), 0);
+    ParallelFor(static_cast<int>(sampled.size()), threads, [&](int s, int t) {
+      QuerySubgraph subgraph;
+      pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
+      const auto x =
+          QesFeatures(subgraph, prepared[sampled[s].scene].scene->embeddings);
+      const Eigen::MatrixXd xd = x.cast<double>();
+      sums[s] = xd.colwise().sum().transpose();
+      squares[s] = xd.array().square().colwise().sum().transpose();
+      counts[s] = x.rows();
+    });
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim);
+    Eigen::VectorXd square = Eigen::VectorXd::Zero(dim);
+    int64_t count = 0;
+    for (size_t s = 0; s < sampled.size(); ++s) {
+      if (counts[s] == 0) continue;
+      sum += sums[s];
+      square += squares[s];
+      count += counts[s];
+    }
+    if (count > 0) {
+      const Eigen::VectorXd mean = sum / count;
+      const Eigen::VectorXd var =
+          (square / count - mean.cwiseProduct(mean)).cwiseMax(0.0);
+      for (int j = 0; j < dim; ++j) {
+        const double sd = std::sqrt(var(j));
+        model.input_shift(j) = static_cast<float>(mean(j));
+        model.input_scale(j) = sd > 1e-8 ? static_cast<float>(1.0 / sd) : 1.f;
+      }
+    }
+  }
+
+  // Class balance over the training 1-hop nodes.
+  int64_t num_pos = 0;
+  int64_t num_one_hop = 0;
+  for (const Sample& sample : train_samples) {
+    const PreparedScene& scene = prepared[sample.scene];
+    for (int i = 0; i < scene.qes.k1; ++i) {
+      num_pos +=
+          scene.IsPositive(sample.query, scene.knn.indices(sample.query, i));
+    }
+    num_one_hop += scene.qes.k1;
+  }
+  float positive_weight = static_cast<float>(o.positive_weight);
+  if (o.positive_weight <= 0) {
+    positive_weight = num_pos > 0
+                          ? std::min(100.f,
+                                     static_cast<float>(num_one_hop - num_pos) /
+                                         std::max<int64_t>(num_pos, 1))
+                          : 1.f;
+  }
+  {
+    std::ostringstream line;
+    line << "GCN training: " << scenes.size() << " scene(s), "
+         << train_samples.size() << " training / " << val_samples.size()
+         << " validation subgraphs, 1-hop positives " << num_pos << " / "
+         << num_one_hop << ", positive weight " << positive_weight
+         << ", optimizer " << o.optimizer << ", " << threads << " thread(s)";
+    log(line.str());
+  }
+
+  // Optimiser state.
+  std::vector<float>& params = model.params.Values();
+  std::vector<float> state1(params.size(), 0.f);
+  std::vector<float> state2(params.size(), 0.f);
+  int64_t step = 0;
+  std::vector<GcnParameters<float>> sample_grads(
+      std::min<size_t>(o.batch_size, train_samples.size()),
+      GcnParameters<float>(shape));
+  std::vector<double> grad(params.size());
+
+  GcnModel best_model = model;
+  double best_f = -1;
+  int best_epoch = -1;
+  int epochs_without_improvement = 0;
+  double lr = o.learning_rate;
+  for (int epoch = 0; epoch < o.num_epochs; ++epoch) {
+    Timer timer;
+    if (std::find(o.lr_decay_epochs.begin(), o.lr_decay_epochs.end(), epoch) !=
+        o.lr_decay_epochs.end()) {
+      lr *= o.lr_decay_factor;
+    }
+    std::vector<Sample> order = train_samples;
+    std::mt19937 erng(o.seed * 7919u + 104729u * (epoch + 1));
+    std::shuffle(order.begin(), order.end(), erng);
+    if (o.max_samples_per_epoch > 0 &&
+        static_cast<int>(order.size()) > o.max_samples_per_epoch) {
+      order.resize(o.max_samples_per_epoch);
+    }
+
+    GcnEpochStats stats;
+    stats.epoch = epoch + 1;
+    stats.learning_rate = lr;
+    std::vector<GcnClassificationStats> batch_stats(sample_grads.size());
+    for (size_t begin = 0; begin < order.size(); begin += o.batch_size) {
+      const int count = static_cast<int>(
+          std::min<size_t>(o.batch_size, order.size() - begin));
+      ParallelFor(count, threads, [&](int i, int t) {
+        const Sample& sample = order[begin + i];
+        const GcnGraph<float> graph =
+            MakeSampleGraph(model,
+                            prepared[sample.scene],
+                            sample.query,
+                            &pool.Get(t, sample.scene));
+        sample_grads[i].SetZero();
+        ColVector<float> logits;
+        batch_stats[i] = GcnClassificationStats();
+        batch_stats[i].loss = GcnLossAndGradient<float>(
+            model.params, graph, positive_weight, &sample_grads[i], &logits);
+        AddPredictions(logits, graph.labels, o.threshold, &batch_stats[i]);
+      });
+      int64_t nodes = 0;
+      for (int i = 0; i < count; ++i) {
+        nodes += batch_stats[i].num_nodes;
+        Accumulate(batch_stats[i], &stats.train);
+      }
+      if (nodes == 0) continue;
+      // Sum the per-sample gradients in sample order (thread independent).
+      std::fill(grad.begin(), grad.end(), 0.0);
+      for (int i = 0; i < count; ++i) {
+        const std::vector<float>& g = sample_grads[i].Values();
+        for (size_t j = 0; j < grad.size(); ++j) grad[j] += g[j];
+      }
+      ++step;
+      const double inv_nodes = 1.0 / static_cast<double>(nodes);
+      if (o.optimizer == "sgd") {
+        for (size_t j = 0; j < params.size(); ++j) {
+          const double d = grad[j] * inv_nodes + o.weight_decay * params[j];
+          const double v = step == 1 ? d : o.momentum * state1[j] + d;
+          state1[j] = static_cast<float>(v);
+          params[j] = static_cast<float>(params[j] - lr * v);
+        }
+      } else {
+        const double c1 =
+            1.0 - std::pow(o.adam_beta1, static_cast<double>(step));
+        const double c2 =
+            1.0 - std::pow(o.adam_beta2, static_cast<double>(step));
+        for (size_t j = 0; j < params.size(); ++j) {
+          const double d = grad[j] * inv_nodes + o.weight_decay * params[j];
+          const double m = o.adam_beta1 * state1[j] + (1 - o.adam_beta1) * d;
+          const double v =
+              o.adam_beta2 * state2[j] + (1 - o.adam_beta2) * d * d;
+          state1[j] = static_cast<float>(m);
+          state2[j] = static_cast<float>(v);
+          params[j] = static_cast<float>(
+              params[j] - lr * (m / c1) / (std::sqrt(v / c2) + o.adam_epsilon));
+        }
+      }
+    }
+    if (stats.train.num_nodes > 0) stats.train.loss /= stats.train.num_nodes;
+
+    bool improved = true;
+    if (!val_samples.empty()) {
+      stats.validation = EvaluateSamples(model,
+                                         prepared,
+                                         val_samples,
+                                         positive_weight,
+                                         o.threshold,
+                                         threads,
+                                         &pool);
+      improved = stats.validation.F() > best_f + 1e-12;
+    }
+    stats.seconds = timer.ElapsedSeconds();
+    history_.push_back(stats);
+    {
+      std::ostringstream line;
+      line << "epoch " << stats.epoch << "/" << o.num_epochs << " lr " << lr
+           << " | train " << FormatStats(stats.train);
+      if (!val_samples.empty())
+        line << " | val " << FormatStats(stats.validation);
+      char seconds[32];
+      std::snprintf(seconds, sizeof(seconds), " | %.1f s", stats.seconds);
+      line << seconds;
+      log(line.str());
+    }
+    if (improved) {
+      best_f = val_samples.empty() ? -1 : stats.validation.F();
+      best_model = model;
+      best_epoch = epoch + 1;
+      epochs_without_improvement = 0;
+    } else if (o.early_stopping_patience > 0 &&
+               ++epochs_without_improvement >= o.early_stopping_patience) {
+      log("early stopping: no better validation F for " +
+          std::to_string(o.early_stopping_patience) + " epoch(s)");
+      break;
+    }
+  }
+
+  // Metadata.
+  best_model.embedding.dim = dim;
+  best_model.info.tau_mo = o.tau_mo;
+  best_model.info.tau_ct = o.tau_ct;
+  best_model.info.test_k1 = o.test_qes.k1;
+  best_model.info.test_k2 = o.test_qes.k2;
+  best_model.info.test_u = o.test_qes.u;
+  best_model.info.threshold = o.threshold;
+  {
+    int64_t images = 0;
+    int64_t pairs = 0;
+    for (const auto& p : prepared) {
+      images += p.scene->embeddings.rows();
+      pairs += static_cast<int64_t>(p.positives.size());
+    }
+    std::ostringstream notes;
+    notes << "trained on " << scenes.size() << " scene(s) + "
+          << validation_scenes.size() << " validation scene(s), " << images
+          << " images, " << pairs << " positive pairs; QES k1=" << o.qes.k1
+          << " k2=" << o.qes.k2 << " u=" << o.qes.u << "; "
+          << GcnAggregationName(o.aggregation) << " aggregation; "
+          << o.optimizer << " lr " << o.learning_rate << ", batch "
+          << o.batch_size << ", positive weight " << positive_weight
+          << ", seed " << o.seed << "; " << train_samples.size() << " train / "
+          << val_samples.size() << " val subgraphs; best epoch " << best_epoch
+          << " of " << history_.size();
+    if (best_epoch > 0 && !val_samples.empty()) {
+      notes << " (val " << FormatStats(history_[best_epoch - 1].validation)
+            << ")";
+    }
+    best_model.info.notes = notes.str();
+  }
+  char seconds[64];
+  std::snprintf(
+      seconds, sizeof(seconds), "%.1f s", total_timer.ElapsedSeconds());
+  log(std::string("GCN training done in ") + seconds + ", best epoch " +
+      std::to_string(best_epoch));
+  return best_model;
+}
+
+GcnClassificationStats EvaluateGcn(const GcnModel& model,
+                                   const std::vector<GcnTrainingScene>& scenes,
+                                   const QesOptions& qes,
+                                   float threshold,
+                                   int num_threads) {
+  const int threads = ResolveNumThreads(num_threads);
+  std::vector<PreparedScene> prepared;
+  std::vector<Sample> samples;
+  for (size_t s = 0; s < scenes.size(); ++s) {
+    model.CheckEmbeddingDimension(
+        static_cast<int>(scenes[s].embeddings.cols()));
+    prepared.push_back(PrepareScene(scenes[s], qes, threads));
+    for (int q = 0; q < scenes[s].embeddings.rows(); ++q) {
+      samples.push_back({static_cast<int>(s), q});
+    }
+  }
+  BuilderPool pool(prepared, threads);
+  return EvaluateSamples(
+      model, prepared, samples, 1.f, threshold, threads, &pool);
+}
+
+}  // namespace colmap_gcn

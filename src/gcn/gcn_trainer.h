@@ -1,0 +1,135 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gcn/gcn_model.h"
+#include "gcn/query_enclosing_subgraph.h"
+#include "retrieval/knn.h"
+
+namespace colmap_gcn {
+
+// One training collection, decoupled from databases: embeddings (rows =
+// images, L2-normalised) and the matchable pairs (unordered row-index pairs;
+// e.g. MO >= tau_MO or CT >= tau_CT). Every other pair is a negative.
+struct GcnTrainingScene {
+  std::string name;
+  EmbeddingMatrix embeddings;
+  std::vector<std::pair<int, int>> positive_pairs;
+};
+
+// Prints the line to stdout (the default training log).
+void PrintGcnTrainingLog(const std::string& line);
+
+struct GcnTrainingOptions {
+  // Network; shape.input_dim is taken from the embeddings.
+  GcnShape shape;
+  GcnAggregation aggregation = GcnAggregation::kSymmetric;
+
+  // QES used for the training samples (paper: k1 = 100, k2 = 5, u = 10).
+  QesOptions qes{100, 5, 10};
+
+  // "sgd" (momentum, torch semantics) or "adam".
+  std::string optimizer = "sgd";
+  double learning_rate = 0.01;
+  double momentum = 0.9;
+  double weight_decay = 1e-4;
+  double adam_beta1 = 0.9;
+  double adam_beta2 = 0.999;
+  double adam_epsilon = 1e-8;
+  // Subgraphs per optimiser step (gradients averaged over their 1-hop nodes).
+  int batch_size = 16;
+  int num_epochs = 4;
+  // Step decay: the learning rate is multiplied by lr_decay_factor at the
+  // start of each listed (0-based) epoch.
+  std::vector<int> lr_decay_epochs = {2, 3};
+  double lr_decay_factor = 0.1;
+
+  // Weight of positive nodes in the BCE; <= 0 = balanced (#neg / #pos over
+  // the training 1-hop nodes, at most 100).
+  double positive_weight = 1.0;
+
+  // Fraction of the (scene, query) samples held out for validation when no
+  // validation scenes are given.
+  double validation_fraction = 0.1;
+  // Stop after this many epochs without a better validation F (0 = never);
+  // the best model (by validation F) is returned.
+  int early_stopping_patience = 2;
+  // Random subset of the training samples per epoch (-1 = all).
+  int max_samples_per_epoch = -1;
+  // Training subgraphs sampled to estimate the input standardisation.
+  int standardization_samples = 256;
+
+  // Decision threshold for precision / recall and stored in the model.
+  float threshold = 0.5f;
+  // Stored in the model (training labels and recommended test settings).
+  float tau_mo = 0.25f;
+  float tau_ct = 0.15f;
+  QesOptions test_qes{100, 5, 5};
+
+  uint32_t seed = 0;
+  // Threads; -1 = all cores. The result does not depend on it.
+  int num_threads = -1;
+  // Called with one line per epoch (and a few set-up lines); default prints
+  // to stdout. Set to an empty function to silence.
+  std::function<void(const std::string&)> log = PrintGcnTrainingLog;
+
+  bool Check() const;
+};
+
+struct GcnClassificationStats {
+  double loss = 0;  // mean weighted BCE per 1-hop node
+  int64_t num_nodes = 0;
+  int64_t true_positives = 0;
+  int64_t false_positives = 0;
+  int64_t false_negatives = 0;
+  double Precision() const;
+  double Recall() const;
+  double F() const;
+};
+
+struct GcnEpochStats {
+  int epoch = 0;
+  double learning_rate = 0;
+  GcnClassificationStats train;
+  GcnClassificationStats validation;
+  double seconds = 0;
+};
+
+class GcnTrainer {
+ public:
+  explicit GcnTrainer(const GcnTrainingOptions& options);
+
+  // Trains on the scenes; validates on validation_scenes, or on a random
+  // validation_fraction of the (scene, query) samples when empty.
+  // Deterministic for a given seed, whatever num_threads.
+  GcnModel Train(const std::vector<GcnTrainingScene>& scenes,
+                 const std::vector<GcnTrainingScene>& validation_scenes = {});
+
+  const std::vector<GcnEpochStats>& History() const { return history_; }
+
+ private:
+  GcnTrainingOptions options_;
+  std::vector<GcnEpochStats> history_;
+};
+
+// Classification statistics of a model on the 1-hop nodes of every query of
+// the scenes (QES from `qes`), e.g. for held-out evaluation.
+GcnClassificationStats EvaluateGcn(const GcnModel& model,
+                                   const std::vector<GcnTrainingScene>& scenes,
+                                   const QesOptions& qes,
+                                   float threshold,
+                                   int num_threads);
+
+// kNN graph for a QES over a collection of n images: k = min(RequiredK, n-1).
+KnnGraph ComputeKnnForQes(const EmbeddingMatrix& embeddings,
+                          const QesOptions& qes,
+                          int num_threads);
+
+// qes with k1, k2, u capped at n - 1.
+QesOptions CapQesOptions(const QesOptions& qes, int num_images);
+
+}  // namespace colmap_gcn
