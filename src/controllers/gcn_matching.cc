@@ -4,13 +4,20 @@
 #include <iostream>
 
 #include "controllers/colmap_runner.h"
+#include "controllers/vocab_tree_pairing.h"
+#include "retrieval/knn_pairing.h"
 #include "util/error.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
 
 bool GcnMatchingOptions::Check() const {
-  return pairing == "exhaustive" ||
+  if ((pairing == "knn" || pairing == "vocab_tree") &&
+      (k <= 0 || (num_threads != -1 && num_threads <= 0))) {
+    return false;
+  }
+  return pairing == "exhaustive" || pairing == "knn" ||
+         pairing == "vocab_tree" ||
          (pairing == "imported" && !match_list_path.empty());
 }
 
@@ -19,8 +26,28 @@ std::unique_ptr<PairGenerator> CreatePairGenerator(
   if (!options.Check()) {
     ThrowError("invalid --GcnMatching.pairing \"",
                options.pairing,
-               "\" (exhaustive, or imported with "
-               "--GcnMatching.match_list_path)");
+               "\" (exhaustive, knn or vocab_tree with k > 0, or imported "
+               "with --GcnMatching.match_list_path)");
+  }
+  if (options.pairing == "knn") {
+    KnnPairingOptions knn;
+    knn.k = options.k;
+    knn.num_threads = options.num_threads;
+    knn.descriptors.embedding_path = options.embedding_path;
+    knn.descriptors.descriptor_path = options.descriptor_path;
+    return std::make_unique<KnnPairGenerator>(knn, database);
+  }
+  if (options.pairing == "vocab_tree") {
+    VocabTreePairingOptions vocab_tree;
+    vocab_tree.k = options.k;
+    vocab_tree.vocab_tree_path = options.vocab_tree_path;
+    ColmapRunnerOptions runner_options;
+    runner_options.log_path = options.colmap_log_path.empty()
+                                  ? database.Path() + ".colmap.log"
+                                  : options.colmap_log_path;
+    runner_options.verbose = options.verbose;
+    return std::make_unique<VocabTreePairGenerator>(
+        vocab_tree, database, ColmapRunner(runner_options));
   }
   if (options.pairing == "imported") {
     ImagePairsMatchingOptions imported;

@@ -12,11 +12,29 @@ namespace colmap_gcn {
 
 // How `gcn_matcher` chooses pairs: the options users set as --GcnMatching.*.
 struct GcnMatchingOptions {
-  // Pair generator: exhaustive | imported.
+  // Pair generator: exhaustive | imported | knn | vocab_tree.
   std::string pairing = "exhaustive";
 
   // Pairs file to import (pairing = imported).
   std::string match_list_path = "";
+
+  // Neighbours retrieved per image (pairing = knn | vocab_tree).
+  int k = 25;
+
+  // Trained VLAD model (`colmap gcn_embedding_trainer`); empty: train on the
+  // database itself (pairing = knn).
+  std::string embedding_path = "";
+
+  // Imported global descriptors, .h5 (hloc) / .npy / .txt, used instead of
+  // VLAD (pairing = knn).
+  std::string descriptor_path = "";
+
+  // Vocabulary tree; empty: build one from the database itself
+  // (pairing = vocab_tree).
+  std::string vocab_tree_path = "";
+
+  // Threads for embedding and kNN; -1 uses all cores.
+  int num_threads = -1;
 
   // Where the chosen pairs are written; empty: "<database_path>.pairs.txt".
   std::string pairs_path = "";

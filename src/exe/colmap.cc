@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "exe/gcn_embedding_trainer.h"
 #include "exe/gcn_matcher.h"
 #include "exe/gcn_reconstructor.h"
 #include "exe/gcn_synth.h"
+#include "exe/gcn_vocab_tree_builder.h"
 #include "util/error.h"
 
 namespace colmap_gcn {
@@ -27,6 +29,8 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
 #ifdef COLMAP_GCN_HAVE_SYNTH
   commands.emplace_back("gcn_synth", &RunGcnSynth);
 #endif
+  commands.emplace_back("gcn_embedding_trainer", &RunGcnEmbeddingTrainer);
+  commands.emplace_back("gcn_vocab_tree_builder", &RunGcnVocabTreeBuilder);
   return commands;
 }
 

@@ -7,11 +7,28 @@ namespace colmap_gcn {
 
 void AddGcnMatchingOptions(OptionManager* manager,
                            GcnMatchingOptions* options) {
-  manager->AddDefaultOption(
-      "GcnMatching.pairing", &options->pairing, "exhaustive | imported");
+  manager->AddDefaultOption("GcnMatching.pairing",
+                            &options->pairing,
+                            "exhaustive | imported | knn | vocab_tree");
   manager->AddDefaultOption("GcnMatching.match_list_path",
                             &options->match_list_path,
                             "pairs file for pairing=imported");
+  manager->AddDefaultOption("GcnMatching.k",
+                            &options->k,
+                            "neighbours per image for knn | vocab_tree");
+  manager->AddDefaultOption("GcnMatching.embedding_path",
+                            &options->embedding_path,
+                            "trained VLAD model (gcn_embedding_trainer); "
+                            "empty: trained on this database");
+  manager->AddDefaultOption("GcnMatching.descriptor_path",
+                            &options->descriptor_path,
+                            "imported global descriptors (.h5 | .npy | .txt)");
+  manager->AddDefaultOption("GcnMatching.vocab_tree_path",
+                            &options->vocab_tree_path,
+                            "vocabulary tree; empty: built from this database");
+  manager->AddDefaultOption("GcnMatching.num_threads",
+                            &options->num_threads,
+                            "threads for embedding and kNN (-1: all cores)");
   manager->AddDefaultOption("GcnMatching.pairs_path",
                             &options->pairs_path,
                             "where the chosen pairs are written");

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -19,8 +20,18 @@ struct KnnOptions {
   // Threads; -1 uses all cores. Results do not depend on it.
   int num_threads = -1;
 
-  // Rows per GEMM block (memory ~ block_size x N floats per thread).
+  // Rows per GEMM block. The exact search multiplies block pairs (only the
+  // upper triangle, as similarities are symmetric), so memory is
+  // ~ block_size x block_size floats per thread plus the N x k result.
   int block_size = 1024;
+
+  // "exact" (ComputeExactKnn) or "faiss_hnsw" (ComputeApproximateKnn, only
+  // when built with FAISS; see FaissAvailable()). Used by ComputeKnn.
+  std::string method = "exact";
+
+  // HNSW graph degree and search breadth for method = "faiss_hnsw".
+  int hnsw_m = 32;
+  int hnsw_ef_search = 256;
 
   bool Check() const;
 };
@@ -43,5 +54,22 @@ struct KnnGraph {
 // one block per thread.
 KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
                          const KnnOptions& options);
+
+// True when this build has FAISS (method = "faiss_hnsw" works).
+bool FaissAvailable();
+
+// Approximate kNN with a FAISS HNSW index on inner products: same output
+// contract (self excluded, rows sorted, ties by index) but neighbours may be
+// missed and, with several threads, results may vary between runs. Throws
+// Error when built without FAISS.
+KnnGraph ComputeApproximateKnn(const EmbeddingMatrix& embeddings,
+                               const KnnOptions& options);
+
+// Dispatches on options.method.
+KnnGraph ComputeKnn(const EmbeddingMatrix& embeddings,
+                    const KnnOptions& options);
+
+// Resolves num_threads = -1 (all cores) to a positive count.
+int RetrievalNumThreads(int num_threads);
 
 }  // namespace colmap_gcn

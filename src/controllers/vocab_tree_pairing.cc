@@ -1,0 +1,277 @@
+#include "controllers/vocab_tree_pairing.h"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <unordered_set>
+
+#include "retrieval/embedding_cache.h"
+#include "retrieval/hash.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+
+bool VocabTreePairingOptions::Check() const {
+  return k > 0 && num_visual_words >= 0 && block_size > 0;
+}
+
+bool VocabTreeBuildOptions::Check() const {
+  return num_visual_words >= 0 && branching > 1 && num_iterations > 0;
+}
+
+int AutoNumVisualWords(size_t num_descriptors) {
+  size_t words = 64;
+  while (words * 2 <= num_descriptors / 20 && words < 65536) words *= 2;
+  return static_cast<int>(std::min(words, num_descriptors));
+}
+
+namespace {
+
+void Exec(sqlite3* db, const std::string& sql) {
+  char* message = nullptr;
+  if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &message) != SQLITE_OK) {
+    const std::string why = message != nullptr ? message : "unknown error";
+    sqlite3_free(message);
+    ThrowError("merging databases failed: ", why);
+  }
+}
+
+std::string SqlQuote(const std::string& str) {
+  std::string quoted = "'";
+  for (const char c : str) {
+    quoted += c;
+    if (c == '\'') quoted += '\'';
+  }
+  return quoted + "'";
+}
+
+// One database holding all images and descriptors of the inputs.
+void MergeDatabases(const std::vector<std::string>& database_paths,
+                    const std::string& merged_path) {
+  for (const std::string& path : database_paths) {
+    const Database database(path);  // validates
+    if (database.Schema() != DatabaseSchema::kColmap38) {
+      ThrowError("cannot merge ",
+                 path,
+                 ": only COLMAP 3.8 databases can be merged for "
+                 "vocab_tree_builder");
+    }
+  }
+  std::filesystem::copy_file(database_paths[0],
+                             merged_path,
+                             std::filesystem::copy_options::overwrite_existing);
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(
+          merged_path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) !=
+      SQLITE_OK) {
+    sqlite3_close(db);
+    ThrowError("cannot open ", merged_path);
+  }
+  try {
+    Exec(db, "PRAGMA journal_mode=DELETE;");
+    Exec(db,
+         "DELETE FROM matches; DELETE FROM two_view_geometries;"
+         "UPDATE images SET name = '0/' || name;");
+    for (size_t i = 1; i < database_paths.size(); ++i) {
+      Exec(db, "ATTACH DATABASE " + SqlQuote(database_paths[i]) + " AS src;");
+      Exec(db,
+           "BEGIN;"
+           "CREATE TEMP TABLE offsets AS SELECT"
+           " (SELECT IFNULL(MAX(camera_id), 0) FROM main.cameras) AS cam,"
+           " (SELECT IFNULL(MAX(image_id), 0) FROM main.images) AS img;"
+           "INSERT INTO main.cameras SELECT camera_id + (SELECT cam FROM"
+           " offsets), model, width, height, params, prior_focal_length"
+           " FROM src.cameras;"
+           "INSERT INTO main.images (image_id, name, camera_id) SELECT"
+           " image_id + (SELECT img FROM offsets), '" +
+               std::to_string(i) +
+               "/' || name, camera_id + (SELECT cam FROM offsets)"
+               " FROM src.images;"
+               "INSERT INTO main.keypoints SELECT image_id + (SELECT img FROM"
+               " offsets), rows, cols, data FROM src.keypoints;"
+               "INSERT INTO main.descriptors SELECT image_id + (SELECT img"
+               " FROM offsets), rows, cols, data FROM src.descriptors;"
+               "DROP TABLE offsets;"
+               "COMMIT;");
+      Exec(db, "DETACH DATABASE src;");
+    }
+  } catch (...) {
+    sqlite3_close(db);
+    throw;
+  }
+  sqlite3_close(db);
+}
+
+}  // namespace
+
+void BuildVocabTree(const ColmapRunner& colmap,
+                    const std::vector<std::string>& database_paths,
+                    const std::string& output_path,
+                    const VocabTreeBuildOptions& options) {
+  if (!options.Check() || database_paths.empty()) {
+    ThrowError(
+        "invalid vocabulary tree options (need databases, "
+        "branching > 1)");
+  }
+  TemporaryDirectory temp("colmap_gcn_vocab_tree");
+  std::string database_path = database_paths[0];
+  if (database_paths.size() > 1) {
+    database_path = JoinPaths(temp.Path(), "merged.db");
+    MergeDatabases(database_paths, database_path);
+  }
+  size_t num_descriptors = 0;
+  {
+    const Database database(database_path);
+    num_descriptors = database.NumDescriptors();
+  }
+  const int num_words = options.num_visual_words > 0
+                            ? options.num_visual_words
+                            : AutoNumVisualWords(num_descriptors);
+  if (num_descriptors < static_cast<size_t>(num_words) || num_words < 2) {
+    ThrowError("a vocabulary tree of ",
+               num_words,
+               " words needs at least as many descriptors; the databases "
+               "have ",
+               num_descriptors);
+  }
+  // COLMAP writes the tree directly; build into a temporary file so an
+  // interrupted build never leaves a truncated tree at output_path.
+  const std::string tmp_tree = JoinPaths(temp.Path(), "tree.bin");
+  colmap.Run("vocab_tree_builder",
+             {"--database_path",
+              database_path,
+              "--vocab_tree_path",
+              tmp_tree,
+              "--num_visual_words",
+              std::to_string(num_words),
+              "--branching",
+              std::to_string(std::min(options.branching, num_words)),
+              "--num_iterations",
+              std::to_string(options.num_iterations)});
+  std::filesystem::copy_file(tmp_tree,
+                             output_path + ".tmp",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::rename(output_path + ".tmp", output_path);
+}
+
+std::vector<ImagePair> ParseVocabTreeRetrieval(
+    const std::string& output,
+    const std::vector<DatabaseImage>& images,
+    int k) {
+  std::map<std::string, image_t> ids_by_name;
+  std::unordered_set<image_t> known_ids;
+  for (const DatabaseImage& image : images) {
+    ids_by_name[image.name] = image.image_id;
+    known_ids.insert(image.image_id);
+  }
+  static const std::regex kQuery(R"(^Querying for image (.*) \[\d+/\d+\])");
+  static const std::regex kHit(R"(^\s*image_id=(\d+), image_name=.*, score=)");
+  std::vector<ImagePair> pairs;
+  std::unordered_set<image_pair_t> seen;
+  image_t query = kInvalidImageId;
+  int num_hits = 0;
+  std::istringstream stream(output);
+  std::string line;
+  std::smatch match;
+  while (std::getline(stream, line)) {
+    if (std::regex_search(line, match, kQuery)) {
+      const auto it = ids_by_name.find(match[1].str());
+      if (it == ids_by_name.end()) {
+        ThrowError("vocab_tree_retriever queried unknown image ",
+                   match[1].str());
+      }
+      query = it->second;
+      num_hits = 0;
+    } else if (std::regex_search(line, match, kHit)) {
+      if (query == kInvalidImageId) {
+        ThrowError("unexpected vocab_tree_retriever output: ", line);
+      }
+      const image_t hit = static_cast<image_t>(std::stoul(match[1].str()));
+      if (known_ids.count(hit) == 0) {
+        ThrowError("vocab_tree_retriever returned unknown image id ", hit);
+      }
+      // The query is usually, not always, its own top hit.
+      if (hit == query || num_hits >= k) continue;
+      ++num_hits;
+      if (seen.insert(ImagePairToPairId(query, hit)).second) {
+        pairs.emplace_back(query, hit);
+      }
+    }
+  }
+  return pairs;
+}
+
+namespace {
+
+// Key of everything a self-built tree depends on.
+std::string TreeKey(const Database& database, int num_visual_words) {
+  uint64_t key = HashCombine(0x7eee, static_cast<uint64_t>(num_visual_words));
+  for (const DatabaseImage& image : database.ReadAllImages()) {
+    key = HashCombine(
+        key,
+        ImageFeatureKey(image.name, database.ReadDescriptors(image.image_id)));
+  }
+  return std::to_string(key);
+}
+
+}  // namespace
+
+VocabTreePairGenerator::VocabTreePairGenerator(
+    const VocabTreePairingOptions& options,
+    const Database& database,
+    const ColmapRunner& colmap)
+    : options_(options) {
+  if (!options_.Check()) {
+    ThrowError("invalid vocabulary-tree pairing options (k > 0)");
+  }
+  std::string tree_path = options_.vocab_tree_path;
+  if (tree_path.empty()) {
+    tree_path = database.Path() + ".gcn-vocab-tree.bin";
+    const std::string key_path = tree_path + ".key";
+    const std::string key = TreeKey(database, options_.num_visual_words);
+    if (!ExistsFile(tree_path) || !ExistsFile(key_path) ||
+        StringTrim(ReadTextFile(key_path)) != key) {
+      VocabTreeBuildOptions build_options;
+      build_options.num_visual_words = options_.num_visual_words;
+      BuildVocabTree(colmap, {database.Path()}, tree_path, build_options);
+      WriteFileAtomically(key_path, key + "\n");
+    }
+  } else if (!ExistsFile(tree_path)) {
+    ThrowError("vocabulary tree ", tree_path, " does not exist");
+  }
+  const std::vector<DatabaseImage> images = database.ReadAllImages();
+  const int k = std::min<int>(options_.k, static_cast<int>(images.size()) - 1);
+  if (k <= 0) return;
+  const std::string output = colmap.Run("vocab_tree_retriever",
+                                        {"--database_path",
+                                         database.Path(),
+                                         "--vocab_tree_path",
+                                         tree_path,
+                                         "--num_images",
+                                         std::to_string(k + 1)});
+  image_pairs_ = ParseVocabTreeRetrieval(output, images, k);
+}
+
+void VocabTreePairGenerator::Reset() { pair_idx_ = 0; }
+
+bool VocabTreePairGenerator::HasFinished() const {
+  return pair_idx_ >= image_pairs_.size();
+}
+
+std::vector<ImagePair> VocabTreePairGenerator::Next() {
+  const size_t end =
+      std::min(image_pairs_.size(),
+               pair_idx_ + static_cast<size_t>(options_.block_size));
+  std::vector<ImagePair> block(image_pairs_.begin() + pair_idx_,
+                               image_pairs_.begin() + end);
+  pair_idx_ = end;
+  return block;
+}
+
+}  // namespace colmap_gcn

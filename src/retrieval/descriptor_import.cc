@@ -1,0 +1,438 @@
+#include "retrieval/descriptor_import.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+
+float HalfToFloat(uint16_t half) {
+  const uint32_t sign = static_cast<uint32_t>(half & 0x8000) << 16;
+  const int exponent = (half >> 10) & 0x1f;
+  const uint32_t mantissa = half & 0x3ff;
+  float value;
+  if (exponent == 0) {
+    value = std::ldexp(static_cast<float>(mantissa), -24);  // subnormal
+  } else if (exponent == 31) {
+    value = mantissa == 0 ? INFINITY : NAN;
+  } else {
+    value = std::ldexp(static_cast<float>(mantissa | 0x400), exponent - 25);
+  }
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof(bits));
+  bits |= sign;
+  std::memcpy(&value, &bits, sizeof(bits));
+  return value;
+}
+
+namespace {
+
+// Lists at most a few names, then the count.
+std::string NameList(const std::vector<std::string>& names) {
+  const size_t kMaxListed = 10;
+  std::vector<std::string> listed(
+      names.begin(), names.begin() + std::min(names.size(), kMaxListed));
+  std::string list = StringJoin(listed, ", ");
+  if (names.size() > kMaxListed) {
+    list += ", ... (" + std::to_string(names.size()) + " in all)";
+  }
+  return list;
+}
+
+// Closes an HDF5 handle on scope exit.
+class Hdf5Handle {
+ public:
+  Hdf5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~Hdf5Handle() {
+    if (id_ >= 0) close_(id_);
+  }
+  Hdf5Handle(const Hdf5Handle&) = delete;
+  Hdf5Handle& operator=(const Hdf5Handle&) = delete;
+  hid_t Id() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+const char kHdf5DatasetName[] = "global_descriptor";
+
+herr_t CollectDescriptorPaths(hid_t,
+                              const char* name,
+                              const H5L_info_t*,
+                              void* data) {
+  const std::string path = name;
+  const std::string suffix = std::string("/") + kHdf5DatasetName;
+  if (path.size() > suffix.size() &&
+      path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0) {
+    static_cast<std::vector<std::string>*>(data)->push_back(path);
+  }
+  return 0;
+}
+
+}  // namespace
+
+ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
+  if (!ExistsFile(path)) {
+    ThrowError("descriptor file ", path, " does not exist");
+  }
+  // Errors are reported through our exceptions, not HDF5's stderr dump.
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const Hdf5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                        H5Fclose);
+  if (file.Id() < 0) {
+    ThrowError(path, " is not a readable HDF5 file");
+  }
+  std::vector<std::string> dataset_paths;
+  if (H5Lvisit(file.Id(),
+               H5_INDEX_NAME,
+               H5_ITER_INC,
+               CollectDescriptorPaths,
+               &dataset_paths) < 0) {
+    ThrowError("cannot list the groups of HDF5 file ", path);
+  }
+  std::sort(dataset_paths.begin(), dataset_paths.end());
+  if (dataset_paths.empty()) {
+    ThrowError("HDF5 file ",
+               path,
+               " has no <image name>/",
+               kHdf5DatasetName,
+               " datasets");
+  }
+  ImportedDescriptors imported;
+  std::vector<std::vector<float>> rows;
+  for (const std::string& dataset_path : dataset_paths) {
+    const std::string name =
+        dataset_path.substr(0, dataset_path.size() - sizeof(kHdf5DatasetName));
+    const Hdf5Handle dataset(
+        H5Dopen2(file.Id(), dataset_path.c_str(), H5P_DEFAULT), H5Dclose);
+    if (dataset.Id() < 0) {
+      ThrowError(path, ": ", dataset_path, " is not a dataset");
+    }
+    const Hdf5Handle type(H5Dget_type(dataset.Id()), H5Tclose);
+    if (H5Tget_class(type.Id()) != H5T_FLOAT) {
+      ThrowError(path, ": ", dataset_path, " is not floating point");
+    }
+    const Hdf5Handle space(H5Dget_space(dataset.Id()), H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(space.Id());
+    hsize_t dims[2] = {0, 0};
+    if (rank < 1 || rank > 2 ||
+        H5Sget_simple_extent_dims(space.Id(), dims, nullptr) < 0 ||
+        (rank == 2 && dims[0] != 1)) {
+      ThrowError(path, ": ", dataset_path, " must have shape (D,) or (1, D)");
+    }
+    const hsize_t dim = rank == 1 ? dims[0] : dims[1];
+    std::vector<float> row(dim);
+    // HDF5 converts float16 (and float64) to native float on read.
+    if (dim == 0 || H5Dread(dataset.Id(),
+                            H5T_NATIVE_FLOAT,
+                            H5S_ALL,
+                            H5S_ALL,
+                            H5P_DEFAULT,
+                            row.data()) < 0) {
+      ThrowError(path, ": cannot read ", dataset_path);
+    }
+    if (!rows.empty() && row.size() != rows[0].size()) {
+      ThrowError(path,
+                 ": ",
+                 dataset_path,
+                 " has ",
+                 row.size(),
+                 " dimensions, ",
+                 imported.names[0],
+                 " has ",
+                 rows[0].size());
+    }
+    imported.names.push_back(name);
+    rows.push_back(std::move(row));
+  }
+  imported.vectors.resize(rows.size(), rows[0].size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    imported.vectors.row(i) =
+        Eigen::Map<const Eigen::RowVectorXf>(rows[i].data(), rows[i].size());
+  }
+  return imported;
+}
+
+namespace {
+
+std::vector<std::string> ReadNameList(const std::string& path) {
+  std::vector<std::string> names;
+  std::istringstream stream(ReadTextFile(path));
+  std::string line;
+  while (std::getline(stream, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    names.push_back(line);
+  }
+  return names;
+}
+
+std::string NpyNamesPath(const std::string& path) {
+  if (ExistsFile(path + ".txt")) {
+    return path + ".txt";
+  }
+  const size_t dot = path.find_last_of('.');
+  const size_t slash = path.find_last_of('/');
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) {
+    const std::string replaced = path.substr(0, dot) + ".txt";
+    if (ExistsFile(replaced)) {
+      return replaced;
+    }
+  }
+  ThrowError("no image names for ",
+             path,
+             ": expected ",
+             path,
+             ".txt with one name per line");
+}
+
+// The value of 'key' in the .npy header dict, up to the next ',' at nesting
+// level 0 (shape tuples contain commas).
+std::string NpyHeaderValue(const std::string& header,
+                           const std::string& key,
+                           const std::string& path) {
+  const size_t at = header.find("'" + key + "'");
+  if (at == std::string::npos) {
+    ThrowError(path, ": .npy header has no '", key, "'");
+  }
+  size_t begin = header.find(':', at);
+  if (begin == std::string::npos) {
+    ThrowError(path, ": malformed .npy header");
+  }
+  ++begin;
+  int depth = 0;
+  size_t end = begin;
+  for (; end < header.size(); ++end) {
+    const char c = header[end];
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    if ((c == ',' && depth == 0) || c == '}') break;
+  }
+  return StringTrim(header.substr(begin, end - begin));
+}
+
+}  // namespace
+
+ImportedDescriptors ReadNpyGlobalDescriptors(const std::string& path) {
+  if (!ExistsFile(path)) {
+    ThrowError("descriptor file ", path, " does not exist");
+  }
+  const std::string contents = ReadTextFile(path);
+  if (contents.size() < 10 || contents.compare(0, 6, "\x93NUMPY") != 0) {
+    ThrowError(path, " is not a .npy file");
+  }
+  const int major = static_cast<unsigned char>(contents[6]);
+  size_t header_length;
+  size_t header_start;
+  if (major == 1) {
+    header_length = static_cast<unsigned char>(contents[8]) |
+                    (static_cast<unsigned char>(contents[9]) << 8);
+    header_start = 10;
+  } else if (major == 2 || major == 3) {
+    if (contents.size() < 12) ThrowError(path, " is truncated");
+    uint32_t length;
+    std::memcpy(&length, contents.data() + 8, 4);
+    header_length = length;
+    header_start = 12;
+  } else {
+    ThrowError(path, ": unsupported .npy version ", major);
+  }
+  if (contents.size() < header_start + header_length) {
+    ThrowError(path, " is truncated");
+  }
+  const std::string header = contents.substr(header_start, header_length);
+  const std::string descr = NpyHeaderValue(header, "descr", path);
+  const std::string fortran = NpyHeaderValue(header, "fortran_order", path);
+  const std::string shape = NpyHeaderValue(header, "shape", path);
+  if (fortran != "False") {
+    ThrowError(path, ": Fortran-order .npy is not supported; save C order");
+  }
+  int element_size;
+  if (descr == "'<f2'") {
+    element_size = 2;
+  } else if (descr == "'<f4'") {
+    element_size = 4;
+  } else if (descr == "'<f8'") {
+    element_size = 8;
+  } else {
+    ThrowError(path,
+               ": unsupported dtype ",
+               descr,
+               " (little-endian float16/32/64 only)");
+  }
+  // shape "(N, D)".
+  const std::vector<std::string> parts =
+      shape.size() < 2 ? std::vector<std::string>()
+                       : StringSplit(shape.substr(1, shape.size() - 2), ",");
+  if (shape.size() < 2 || shape.front() != '(' || shape.back() != ')' ||
+      parts.size() != 2 || StringTrim(parts[1]).empty()) {
+    ThrowError(path, ": expected a 2-D array N x D, shape is ", shape);
+  }
+  const size_t num_rows = std::stoull(StringTrim(parts[0]));
+  const size_t dim = std::stoull(StringTrim(parts[1]));
+  const size_t data_start = header_start + header_length;
+  if (contents.size() != data_start + num_rows * dim * element_size) {
+    ThrowError(path, ": data size does not match shape ", shape);
+  }
+  ImportedDescriptors imported;
+  imported.names = ReadNameList(NpyNamesPath(path));
+  if (imported.names.size() != num_rows) {
+    ThrowError(path,
+               " has ",
+               num_rows,
+               " rows but its names list has ",
+               imported.names.size(),
+               " names");
+  }
+  imported.vectors.resize(num_rows, dim);
+  const char* data = contents.data() + data_start;
+  for (size_t i = 0; i < num_rows * dim; ++i) {
+    float value;
+    if (element_size == 2) {
+      uint16_t half;
+      std::memcpy(&half, data + 2 * i, 2);
+      value = HalfToFloat(half);
+    } else if (element_size == 4) {
+      std::memcpy(&value, data + 4 * i, 4);
+    } else {
+      double wide;
+      std::memcpy(&wide, data + 8 * i, 8);
+      value = static_cast<float>(wide);
+    }
+    imported.vectors.data()[i] = value;
+  }
+  return imported;
+}
+
+ImportedDescriptors ReadTextGlobalDescriptors(const std::string& path) {
+  if (!ExistsFile(path)) {
+    ThrowError("descriptor file ", path, " does not exist");
+  }
+  std::istringstream stream(ReadTextFile(path));
+  std::string line;
+  std::vector<std::vector<float>> rows;
+  ImportedDescriptors imported;
+  int line_number = 0;
+  while (std::getline(stream, line)) {
+    ++line_number;
+    line = StringTrim(line);
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string name;
+    fields >> name;
+    std::vector<float> row;
+    std::string token;
+    while (fields >> token) {
+      try {
+        size_t used = 0;
+        row.push_back(std::stof(token, &used));
+        if (used != token.size()) throw std::invalid_argument(token);
+      } catch (const std::exception&) {
+        ThrowError(path, ":", line_number, ": not a number: ", token);
+      }
+    }
+    if (row.empty() || (!rows.empty() && row.size() != rows[0].size())) {
+      ThrowError(path,
+                 ":",
+                 line_number,
+                 ": expected \"name v1 ... vD\" with the same D on every line");
+    }
+    imported.names.push_back(name);
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty()) {
+    ThrowError(path, " has no descriptors");
+  }
+  imported.vectors.resize(rows.size(), rows[0].size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    imported.vectors.row(i) =
+        Eigen::Map<const Eigen::RowVectorXf>(rows[i].data(), rows[i].size());
+  }
+  return imported;
+}
+
+ImportedDescriptors ReadGlobalDescriptors(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  const std::string extension =
+      dot == std::string::npos ? "" : path.substr(dot + 1);
+  if (extension == "h5" || extension == "hdf5") {
+    return ReadHdf5GlobalDescriptors(path);
+  }
+  if (extension == "npy") {
+    return ReadNpyGlobalDescriptors(path);
+  }
+  if (extension == "txt") {
+    return ReadTextGlobalDescriptors(path);
+  }
+  ThrowError("unknown descriptor file type ",
+             path,
+             " (expected .h5/.hdf5, .npy or .txt)");
+}
+
+EmbeddingMatrix MatchDescriptorsToImages(
+    const ImportedDescriptors& imported,
+    const std::vector<DatabaseImage>& images,
+    std::vector<image_t>* image_ids) {
+  THROW_CHECK(imported.names.size() ==
+              static_cast<size_t>(imported.vectors.rows()));
+  std::map<std::string, int> rows_by_name;
+  std::vector<std::string> duplicates;
+  for (size_t i = 0; i < imported.names.size(); ++i) {
+    if (!rows_by_name.emplace(imported.names[i], static_cast<int>(i)).second) {
+      duplicates.push_back(imported.names[i]);
+    }
+  }
+  if (!duplicates.empty()) {
+    ThrowError("duplicate image names in imported descriptors: ",
+               NameList(duplicates));
+  }
+  std::vector<DatabaseImage> sorted = images;
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+    return a.image_id < b.image_id;
+  });
+  std::vector<std::string> missing;
+  std::set<std::string> database_names;
+  for (const DatabaseImage& image : sorted) {
+    database_names.insert(image.name);
+    if (rows_by_name.count(image.name) == 0) missing.push_back(image.name);
+  }
+  std::vector<std::string> unknown;
+  for (const std::string& name : imported.names) {
+    if (database_names.count(name) == 0) unknown.push_back(name);
+  }
+  if (!missing.empty() || !unknown.empty()) {
+    std::string message = "imported descriptors do not match the database:";
+    if (!missing.empty()) {
+      message += " no descriptor for database image(s) " + NameList(missing);
+      if (!unknown.empty()) message += ";";
+    }
+    if (!unknown.empty()) {
+      message += " not in the database: " + NameList(unknown);
+    }
+    ThrowError(message);
+  }
+  EmbeddingMatrix embeddings(sorted.size(), imported.vectors.cols());
+  image_ids->clear();
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    image_ids->push_back(sorted[i].image_id);
+    embeddings.row(i) = imported.vectors.row(rows_by_name.at(sorted[i].name));
+    if (!embeddings.row(i).allFinite()) {
+      ThrowError("imported descriptor of ", sorted[i].name, " is not finite");
+    }
+    const float norm = embeddings.row(i).norm();
+    if (norm > 0) embeddings.row(i) /= norm;
+  }
+  return embeddings;
+}
+
+}  // namespace colmap_gcn

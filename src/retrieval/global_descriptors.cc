@@ -1,0 +1,114 @@
+#include "retrieval/global_descriptors.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include "retrieval/descriptor_import.h"
+#include "retrieval/embedding_cache.h"
+#include "retrieval/hash.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+
+bool GlobalDescriptorOptions::Check() const {
+  return vlad.Check() && (num_threads == -1 || num_threads > 0);
+}
+
+std::string SelfTrainedModelPath(const std::string& database_path) {
+  return database_path + ".gcn-vlad.bin";
+}
+
+namespace {
+
+// Everything the self-trained model depends on.
+uint64_t SelfTrainingKey(const Database& database, const VladOptions& options) {
+  uint64_t key = 0x5eed;
+  for (const DatabaseImage& image : database.ReadAllImages()) {
+    key = HashCombine(
+        key,
+        ImageFeatureKey(image.name, database.ReadDescriptors(image.image_id)));
+  }
+  for (const double value :
+       {static_cast<double>(options.num_words),
+        static_cast<double>(options.dim),
+        options.self_training_shrinkage,
+        static_cast<double>(options.max_training_descriptors),
+        static_cast<double>(options.kmeans_iterations),
+        static_cast<double>(options.max_pca_images),
+        static_cast<double>(options.seed)}) {
+    key = HashBytes(&value, sizeof(value), key);
+  }
+  return key;
+}
+
+std::string Hex(uint64_t value) {
+  char buffer[17];
+  std::snprintf(buffer,
+                sizeof(buffer),
+                "%016llx",
+                static_cast<unsigned long long>(value));
+  return buffer;
+}
+
+}  // namespace
+
+VladEmbedding LoadOrTrainSelfEmbedding(const Database& database,
+                                       const VladOptions& options,
+                                       bool use_cache) {
+  const std::string model_path = SelfTrainedModelPath(database.Path());
+  const std::string key_path = model_path + ".key";
+  std::string key;
+  if (use_cache) {
+    key = Hex(SelfTrainingKey(database, options));
+    if (ExistsFile(model_path) && ExistsFile(key_path) &&
+        StringTrim(ReadTextFile(key_path)) == key) {
+      try {
+        return VladEmbedding::Read(model_path);
+      } catch (const Error&) {
+        // A corrupt cache is retrained below.
+      }
+    }
+  }
+  const VladEmbedding embedding =
+      TrainVladEmbedding(std::vector<const Database*>{&database},
+                         options,
+                         options.self_training_shrinkage);
+  if (use_cache) {
+    try {
+      embedding.Write(model_path);
+      WriteFileAtomically(key_path, key + "\n");
+    } catch (const Error& error) {
+      std::cerr << "warning: self-trained VLAD model not cached: "
+                << error.what() << "\n";
+    }
+  }
+  return embedding;
+}
+
+EmbeddingMatrix ComputeGlobalDescriptors(const Database& database,
+                                         const GlobalDescriptorOptions& options,
+                                         std::vector<image_t>* image_ids) {
+  if (!options.Check()) {
+    ThrowError("invalid global descriptor options");
+  }
+  if (!options.descriptor_path.empty()) {
+    return MatchDescriptorsToImages(
+        ReadGlobalDescriptors(options.descriptor_path),
+        database.ReadAllImages(),
+        image_ids);
+  }
+  const VladEmbedding embedding =
+      options.embedding_path.empty()
+          ? LoadOrTrainSelfEmbedding(database, options.vlad, options.use_cache)
+          : VladEmbedding::Read(options.embedding_path);
+  return ComputeDatabaseEmbeddings(
+      database,
+      embedding,
+      image_ids,
+      options.use_cache ? DefaultEmbeddingCachePath(database.Path()) : "",
+      options.num_threads);
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,251 @@
+#include "retrieval/knn.h"
+
+#include <algorithm>
+#include <atomic>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "retrieval/dense_product.h"
+#include "util/error.h"
+
+namespace colmap_gcn {
+
+bool KnnOptions::Check() const {
+  return k >= 0 && (num_threads == -1 || num_threads > 0) && block_size > 0 &&
+         (method == "exact" || method == "faiss_hnsw") && hnsw_m > 1 &&
+         hnsw_ef_search > 0;
+}
+
+int RetrievalNumThreads(int num_threads) {
+  if (num_threads > 0) {
+    return num_threads;
+  }
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+namespace {
+
+struct Neighbor {
+  float similarity;
+  int32_t index;
+};
+
+// The total order of the output: higher similarity first, then lower index.
+// Because it is total, the top-k set of any candidate multiset is unique, so
+// the result does not depend on the order candidates arrive in (threads).
+inline bool Better(const Neighbor& a, const Neighbor& b) {
+  return a.similarity > b.similarity ||
+         (a.similarity == b.similarity && a.index < b.index);
+}
+
+// Per-row bounded heaps with the worst kept neighbour at the top, stored flat
+// (N x k) so memory is exactly O(N k).
+class TopKHeaps {
+ public:
+  TopKHeaps(int num_rows, int k)
+      : k_(k), heaps_(static_cast<size_t>(num_rows) * k), sizes_(num_rows, 0) {}
+
+  // Similarity below which a candidate for row cannot enter its heap.
+  float Threshold(int row) const {
+    return sizes_[row] < k_ ? -std::numeric_limits<float>::infinity()
+                            : heaps_[static_cast<size_t>(row) * k_].similarity;
+  }
+
+  void Push(int row, const Neighbor& candidate) {
+    Neighbor* heap = heaps_.data() + static_cast<size_t>(row) * k_;
+    int& size = sizes_[row];
+    if (size < k_) {
+      // Sift up.
+      int child = size++;
+      while (child > 0) {
+        const int parent = (child - 1) / 2;
+        if (!Better(heap[parent], candidate)) break;
+        heap[child] = heap[parent];
+        child = parent;
+      }
+      heap[child] = candidate;
+      return;
+    }
+    if (!Better(candidate, heap[0])) {
+      return;
+    }
+    // Replace the worst and sift down.
+    int parent = 0;
+    while (true) {
+      int child = 2 * parent + 1;
+      if (child >= k_) break;
+      if (child + 1 < k_ && Better(heap[child], heap[child + 1])) ++child;
+      if (!Better(candidate, heap[child])) break;
+      heap[parent] = heap[child];
+      parent = child;
+    }
+    heap[parent] = candidate;
+  }
+
+  // Sorted neighbours of row, best first.
+  void Sorted(int row, Neighbor* out) const {
+    const Neighbor* heap = heaps_.data() + static_cast<size_t>(row) * k_;
+    std::copy(heap, heap + sizes_[row], out);
+    std::sort(out, out + sizes_[row], Better);
+  }
+
+ private:
+  int k_;
+  std::vector<Neighbor> heaps_;
+  std::vector<int> sizes_;
+};
+
+// Runs fn(task) for task in [0, num_tasks) on num_threads threads, handing
+// out tasks dynamically. Callers make fn's effect independent of order.
+template <typename Fn>
+void ParallelFor(int num_tasks, int num_threads, const Fn& fn) {
+  num_threads = std::max(1, std::min(num_threads, num_tasks));
+  if (num_threads == 1) {
+    for (int task = 0; task < num_tasks; ++task) fn(task, 0);
+    return;
+  }
+  std::atomic<int> next(0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < num_threads; ++t) {
+    threads.emplace_back([&, t]() {
+      for (int task = next++; task < num_tasks; task = next++) {
+        fn(task, t);
+      }
+    });
+  }
+  for (auto& thread : threads) thread.join();
+}
+
+}  // namespace
+
+KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
+                         const KnnOptions& options) {
+  if (!options.Check()) {
+    ThrowError(
+        "invalid kNN options (k >= 0, num_threads -1 or > 0, "
+        "block_size > 0)");
+  }
+  if (!embeddings.allFinite()) {
+    ThrowError("kNN input has non-finite (NaN or infinite) values");
+  }
+  const int num_rows = static_cast<int>(embeddings.rows());
+  const int dim = static_cast<int>(embeddings.cols());
+  const int k = std::max(0, std::min(options.k, num_rows - 1));
+  KnnGraph graph;
+  graph.indices.resize(num_rows, k);
+  graph.similarities.resize(num_rows, k);
+  if (k == 0) {
+    return graph;
+  }
+
+  // Similarities are symmetric, so only block pairs (I, J) with J >= I are
+  // multiplied and each product updates the rows of both blocks: half the
+  // flops of the full N x N product. The block partition depends only on
+  // block_size, never on the thread count, so every similarity is computed
+  // by the same kernel call and the output is identical for any threads.
+  const int block_size = std::min(options.block_size, num_rows);
+  const int num_blocks = (num_rows + block_size - 1) / block_size;
+  std::vector<std::pair<int, int>> tasks;
+  for (int bi = 0; bi < num_blocks; ++bi) {
+    for (int bj = bi; bj < num_blocks; ++bj) tasks.emplace_back(bi, bj);
+  }
+  const int num_threads = RetrievalNumThreads(options.num_threads);
+
+  TopKHeaps heaps(num_rows, k);
+  std::vector<std::mutex> block_mutexes(num_blocks);
+  std::vector<std::vector<float>> products(
+      std::min<int>(num_threads, tasks.size()));
+  std::vector<std::vector<float>> thresholds(products.size());
+  const float* data = embeddings.data();
+
+  ParallelFor(
+      static_cast<int>(tasks.size()), num_threads, [&](int task, int thread) {
+        const int bi = tasks[task].first;
+        const int bj = tasks[task].second;
+        const int i0 = bi * block_size;
+        const int j0 = bj * block_size;
+        const int mi = std::min(block_size, num_rows - i0);
+        const int mj = std::min(block_size, num_rows - j0);
+        std::vector<float>& s = products[thread];
+        s.resize(static_cast<size_t>(mi) * mj);
+        MultiplyABt(data + static_cast<size_t>(i0) * dim,
+                    mi,
+                    data + static_cast<size_t>(j0) * dim,
+                    mj,
+                    dim,
+                    s.data());
+        if (bi == bj) {
+          // One value per unordered pair, also within a block.
+          for (int r = 0; r < mi; ++r) {
+            for (int c = 0; c < r; ++c) {
+              s[static_cast<size_t>(r) * mj + c] =
+                  s[static_cast<size_t>(c) * mj + r];
+            }
+          }
+        }
+        {
+          std::lock_guard<std::mutex> lock(block_mutexes[bi]);
+          for (int r = 0; r < mi; ++r) {
+            const int i = i0 + r;
+            const float* row = s.data() + static_cast<size_t>(r) * mj;
+            float threshold = heaps.Threshold(i);
+            for (int c = 0; c < mj; ++c) {
+              const int j = j0 + c;
+              if (row[c] < threshold || j == i) continue;
+              heaps.Push(i, {row[c], j});
+              threshold = heaps.Threshold(i);
+            }
+          }
+        }
+        if (bi != bj) {
+          // Column-wise update of block J's rows, scanning S row by
+          // row for cache locality with one threshold per column.
+          std::lock_guard<std::mutex> lock(block_mutexes[bj]);
+          std::vector<float>& threshold = thresholds[thread];
+          threshold.resize(mj);
+          for (int c = 0; c < mj; ++c) {
+            threshold[c] = heaps.Threshold(j0 + c);
+          }
+          for (int r = 0; r < mi; ++r) {
+            const float* row = s.data() + static_cast<size_t>(r) * mj;
+            for (int c = 0; c < mj; ++c) {
+              if (row[c] < threshold[c]) continue;
+              heaps.Push(j0 + c, {row[c], i0 + r});
+              threshold[c] = heaps.Threshold(j0 + c);
+            }
+          }
+        }
+      });
+
+  std::vector<Neighbor> sorted(k);
+  for (int i = 0; i < num_rows; ++i) {
+    heaps.Sorted(i, sorted.data());
+    for (int n = 0; n < k; ++n) {
+      graph.indices(i, n) = sorted[n].index;
+      graph.similarities(i, n) = sorted[n].similarity;
+    }
+  }
+  return graph;
+}
+
+#ifndef COLMAP_GCN_HAVE_FAISS
+bool FaissAvailable() { return false; }
+
+KnnGraph ComputeApproximateKnn(const EmbeddingMatrix&, const KnnOptions&) {
+  ThrowError(
+      "approximate kNN (faiss_hnsw) needs a build with FAISS "
+      "(libfaiss-dev); use method exact");
+}
+#endif
+
+KnnGraph ComputeKnn(const EmbeddingMatrix& embeddings,
+                    const KnnOptions& options) {
+  if (options.method == "faiss_hnsw") {
+    return ComputeApproximateKnn(embeddings, options);
+  }
+  return ComputeExactKnn(embeddings, options);
+}
+
+}  // namespace colmap_gcn

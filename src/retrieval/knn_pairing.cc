@@ -1,0 +1,91 @@
+#include "retrieval/knn_pairing.h"
+
+#include <algorithm>
+#include <unordered_set>
+
+#include "util/error.h"
+
+namespace colmap_gcn {
+
+bool KnnPairingOptions::Check() const {
+  return k > 0 && descriptors.Check() &&
+         (knn_method == "exact" || knn_method == "faiss_hnsw") &&
+         (num_threads == -1 || num_threads > 0) && block_size > 0;
+}
+
+std::vector<ImagePair> KnnGraphToPairs(const KnnGraph& graph,
+                                       const std::vector<image_t>& image_ids) {
+  THROW_CHECK(static_cast<size_t>(graph.NumImages()) == image_ids.size());
+  std::vector<ImagePair> pairs;
+  std::unordered_set<image_pair_t> seen;
+  for (int i = 0; i < graph.NumImages(); ++i) {
+    for (int n = 0; n < graph.K(); ++n) {
+      const int j = graph.indices(i, n);
+      if (j < 0 || j == i) continue;  // FAISS may pad with -1
+      const image_t id1 = image_ids[i];
+      const image_t id2 = image_ids[j];
+      if (seen.insert(ImagePairToPairId(id1, id2)).second) {
+        pairs.emplace_back(id1, id2);
+      }
+    }
+  }
+  return pairs;
+}
+
+KnnPairGenerator::KnnPairGenerator(const KnnPairingOptions& options,
+                                   const EmbeddingMatrix& embeddings,
+                                   const std::vector<image_t>& image_ids)
+    : options_(options) {
+  Build(embeddings, image_ids);
+}
+
+KnnPairGenerator::KnnPairGenerator(const KnnPairingOptions& options,
+                                   const Database& database)
+    : options_(options) {
+  if (!options_.Check()) {
+    ThrowError(
+        "invalid kNN pairing options (k > 0, knn_method exact or "
+        "faiss_hnsw)");
+  }
+  GlobalDescriptorOptions descriptor_options = options_.descriptors;
+  descriptor_options.num_threads = options_.num_threads;
+  descriptor_options.vlad.num_threads = options_.num_threads;
+  std::vector<image_t> image_ids;
+  const EmbeddingMatrix embeddings =
+      ComputeGlobalDescriptors(database, descriptor_options, &image_ids);
+  Build(embeddings, image_ids);
+}
+
+void KnnPairGenerator::Build(const EmbeddingMatrix& embeddings,
+                             const std::vector<image_t>& image_ids) {
+  if (!options_.Check()) {
+    ThrowError(
+        "invalid kNN pairing options (k > 0, knn_method exact or "
+        "faiss_hnsw)");
+  }
+  THROW_CHECK(static_cast<size_t>(embeddings.rows()) == image_ids.size());
+  KnnOptions knn_options;
+  knn_options.k = options_.k;
+  knn_options.num_threads = options_.num_threads;
+  knn_options.method = options_.knn_method;
+  image_pairs_ =
+      KnnGraphToPairs(ComputeKnn(embeddings, knn_options), image_ids);
+}
+
+void KnnPairGenerator::Reset() { pair_idx_ = 0; }
+
+bool KnnPairGenerator::HasFinished() const {
+  return pair_idx_ >= image_pairs_.size();
+}
+
+std::vector<ImagePair> KnnPairGenerator::Next() {
+  const size_t end =
+      std::min(image_pairs_.size(),
+               pair_idx_ + static_cast<size_t>(options_.block_size));
+  std::vector<ImagePair> block(image_pairs_.begin() + pair_idx_,
+                               image_pairs_.begin() + end);
+  pair_idx_ = end;
+  return block;
+}
+
+}  // namespace colmap_gcn

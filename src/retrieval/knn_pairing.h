@@ -1,0 +1,64 @@
+#pragma once
+
+#include <vector>
+
+#include "feature/pairing.h"
+#include "retrieval/global_descriptors.h"
+#include "retrieval/knn.h"
+#include "scene/database.h"
+
+namespace colmap_gcn {
+
+struct KnnPairingOptions {
+  // Neighbours retrieved per image (capped at N - 1): the paper's "CNN
+  // retrieval with fixed k" baseline.
+  int k = 25;
+
+  // Where the global descriptors come from.
+  GlobalDescriptorOptions descriptors;
+
+  // "exact" or "faiss_hnsw" (see KnnOptions).
+  std::string knn_method = "exact";
+
+  // Threads for embedding and kNN; -1 uses all cores.
+  int num_threads = -1;
+
+  // Number of image pairs in one block.
+  int block_size = 1225;
+
+  bool Check() const;
+};
+
+// The unordered pairs {i, j} for j among the k nearest neighbours of i, each
+// once, in order of first appearance (queries in row order, neighbours by
+// rank), oriented (query, neighbour) as first seen.
+std::vector<ImagePair> KnnGraphToPairs(const KnnGraph& graph,
+                                       const std::vector<image_t>& image_ids);
+
+// Top-k retrieval on global descriptors. All the work happens in the
+// constructor; Next() hands out blocks.
+class KnnPairGenerator : public PairGenerator {
+ public:
+  using PairOptions = KnnPairingOptions;
+
+  // From precomputed embeddings (row i belongs to image_ids[i]).
+  KnnPairGenerator(const KnnPairingOptions& options,
+                   const EmbeddingMatrix& embeddings,
+                   const std::vector<image_t>& image_ids);
+  // Computes the global descriptors of the database first.
+  KnnPairGenerator(const KnnPairingOptions& options, const Database& database);
+
+  void Reset() override;
+  bool HasFinished() const override;
+  std::vector<ImagePair> Next() override;
+
+ private:
+  void Build(const EmbeddingMatrix& embeddings,
+             const std::vector<image_t>& image_ids);
+
+  const KnnPairingOptions options_;
+  std::vector<ImagePair> image_pairs_;
+  size_t pair_idx_ = 0;
+};
+
+}  // namespace colmap_gcn
