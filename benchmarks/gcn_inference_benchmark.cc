@@ -18,6 +18,8 @@
 #include <fstream>
 #include <string>
 
+#include <sys/resource.h>
+
 #include <benchmark/benchmark.h>
 
 #include "gcn/gcn_inference.h"
@@ -41,16 +43,25 @@ struct Collection {
   GcnModel model;
 };
 
+// noise 0.05: tight clusters, QES of ~180 nodes; noise 1: nearly unclustered
+// embeddings, QES close to the maximum k1 + k1 k2 = 600 nodes.
+Collection* MakeCollection(float noise) {
+  auto* c = new Collection;
+  std::vector<int> clusters;
+  c->embeddings = bench::SyntheticEmbeddings(
+      kQuickImages, kDim, 1, &clusters, 5, 300, noise);
+  c->knn = ComputeKnnForQes(c->embeddings, kQes, -1);
+  c->model = InitializeGcnModel(GcnShape(), GcnAggregation::kSymmetric, 0);
+  return c;
+}
+
+const Collection& DiffuseCollection() {
+  static const Collection* collection = MakeCollection(1.f);
+  return *collection;
+}
+
 const Collection& QuickCollection() {
-  static const Collection* collection = [] {
-    auto* c = new Collection;
-    std::vector<int> clusters;
-    c->embeddings =
-        bench::SyntheticEmbeddings(kQuickImages, kDim, 1, &clusters);
-    c->knn = ComputeKnnForQes(c->embeddings, kQes, -1);
-    c->model = InitializeGcnModel(GcnShape(), GcnAggregation::kSymmetric, 0);
-    return c;
-  }();
+  static const Collection* collection = MakeCollection(0.05f);
   return *collection;
 }
 
@@ -73,7 +84,8 @@ BENCHMARK(BM_QesBuild)->Unit(benchmark::kMicrosecond);
 // What the pair generator does per query (the per-collection projection of
 // layer 1 is done once, outside the loop; see the full run for its cost).
 void BM_QesPlusGcnPerQuery(benchmark::State& state) {
-  const Collection& c = QuickCollection();
+  const Collection& c =
+      state.range(0) == 0 ? QuickCollection() : DiffuseCollection();
   const GcnScorer scorer(c.model, c.embeddings, 1);
   QesBuilder builder(c.knn, kQes);
   QuerySubgraph subgraph;
@@ -92,22 +104,42 @@ void BM_QesPlusGcnPerQuery(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(nodes) / state.iterations());
   state.SetLabel(std::string("sgemm ") + SgemmKernelName());
 }
-BENCHMARK(BM_QesPlusGcnPerQuery)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_QesPlusGcnPerQuery)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("diffuse")
+    ->Unit(benchmark::kMillisecond);
 
 // The straightforward path (dense G, every layer on every node, Eigen).
 void BM_ReferenceForwardPerQuery(benchmark::State& state) {
-  const Collection& c = QuickCollection();
+  const Collection& c =
+      state.range(0) == 0 ? QuickCollection() : DiffuseCollection();
   QesBuilder builder(c.knn, kQes);
   QuerySubgraph subgraph;
   int q = 0;
+  int64_t nodes = 0;
   for (auto _ : state) {
     builder.Build(q, &subgraph);
+    nodes += subgraph.NumNodes();
     const GcnGraph<float> graph = MakeGcnGraph(c.model, subgraph, c.embeddings);
     benchmark::DoNotOptimize(GcnForwardReference(c.model.params, graph));
     q = (q + 7919) % kQuickImages;
   }
+  state.counters["nodes"] =
+      benchmark::Counter(static_cast<double>(nodes) / state.iterations());
 }
-BENCHMARK(BM_ReferenceForwardPerQuery)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReferenceForwardPerQuery)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("diffuse")
+    ->Unit(benchmark::kMillisecond);
+
+double ProcessCpuSeconds() {
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
 
 long PeakRssMb() {
   std::ifstream status("/proc/self/status");
@@ -146,8 +178,10 @@ int FullRun(int num_images, int num_threads) {
   options.u = kQes.u;
   options.num_threads = num_threads;
   timer.Restart();
+  const double cpu_start = ProcessCpuSeconds();
   GcnPairGenerator generator(options, ids, embeddings, model);
   const double total = timer.ElapsedSeconds();
+  const double cpu = ProcessCpuSeconds() - cpu_start;
   const GcnPairingStats& stats = generator.Stats();
   std::printf(
       "  kNN (exact, k = %d): %.1f s\n", kQes.RequiredK(), stats.knn_seconds);
@@ -163,6 +197,11 @@ int FullRun(int num_images, int num_threads) {
       total / 60,
       stats.num_candidates,
       generator.ScoredPairs().size());
+  std::printf(
+      "  process CPU time of pair generation: %.1f s (wall x threads "
+      "= %.1f s; less means the machine was shared)\n",
+      cpu,
+      total * num_threads);
   std::printf("  peak RSS: %ld MB\n", PeakRssMb());
   return 0;
 }
