@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "exe/gcn_benchmark.h"
 #include "exe/gcn_embedding_trainer.h"
 #include "exe/gcn_matcher.h"
 #include "exe/gcn_reconstructor.h"
@@ -31,6 +32,7 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
 #endif
   commands.emplace_back("gcn_embedding_trainer", &RunGcnEmbeddingTrainer);
   commands.emplace_back("gcn_vocab_tree_builder", &RunGcnVocabTreeBuilder);
+  commands.emplace_back("gcn_benchmark", &RunGcnBenchmark);
   return commands;
 }
 

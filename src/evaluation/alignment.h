@@ -1,0 +1,72 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "scene/reconstruction.h"
+
+namespace colmap_gcn {
+
+// x_dst = scale * rotation * x_src + translation.
+struct Similarity3d {
+  double scale = 1.0;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+
+  Eigen::Vector3d Transform(const Eigen::Vector3d& x) const {
+    return scale * rotation * x + translation;
+  }
+};
+
+// Least-squares similarity mapping src onto dst (Umeyama, PAMI 1991).
+// Returns false when it is undetermined: fewer than 3 points, or points
+// (nearly) collinear or coincident.
+bool EstimateSimilarity(const std::vector<Eigen::Vector3d>& src,
+                        const std::vector<Eigen::Vector3d>& dst,
+                        Similarity3d* similarity);
+
+struct PoseErrorOptions {
+  // An image is accurate when its rotation error is below this (degrees) ...
+  double max_rotation_error_deg = 5.0;
+  // ... and its position error below this fraction of the scene extent.
+  double max_position_error = 0.05;
+
+  bool Check() const;
+};
+
+// Camera errors of a model against ground truth after aligning the camera
+// centres with one similarity. The alignment uses every image in both, so a
+// folded model (back side registered onto the front) cannot be aligned well
+// and shows large errors even though every image registered.
+struct PoseErrors {
+  size_t num_gt_images = 0;               // images with ground truth
+  size_t num_evaluated = 0;               // of those, registered in the model
+  bool aligned = false;                   // a similarity could be estimated
+  double scene_extent = 0;                // largest distance between GT centres
+  double median_rotation_error_deg = -1;  // over evaluated images
+  double median_position_error = -1;      // relative to scene_extent
+  // Fractions over all GT images (unregistered images count as failures).
+  double fraction_rotation_ok = 0;
+  double fraction_position_ok = 0;
+  double fraction_accurate = 0;  // both
+  // Per evaluated image, in name order.
+  std::vector<std::string> names;
+  std::vector<double> rotation_errors_deg;
+  std::vector<double> position_errors;
+  Similarity3d model_to_gt;
+};
+
+PoseErrors ComputePoseErrors(const Reconstruction& model,
+                             const Reconstruction& ground_truth,
+                             const PoseErrorOptions& options);
+
+// Largest distance between two camera centres of a model.
+double CameraExtent(const Reconstruction& reconstruction);
+
+// Angle of the rotation R_a R_b^T in degrees.
+double RotationAngleDeg(const Eigen::Matrix3d& rotation_a,
+                        const Eigen::Matrix3d& rotation_b);
+
+}  // namespace colmap_gcn

@@ -1,0 +1,685 @@
+#include "evaluation/benchmark.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "controllers/colmap_runner.h"
+#include "controllers/gcn_matching.h"
+#include "controllers/pair_matching.h"
+#include "evaluation/common_tracks.h"
+#include "evaluation/dataset.h"
+#include "evaluation/figures.h"
+#include "evaluation/ground_truth.h"
+#include "evaluation/method.h"
+#include "evaluation/report.h"
+#include "feature/pairs_io.h"
+#include "scene/reconstruction_stats.h"
+#include "synthetic/pair_overlap.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+#include "util/timer.h"
+
+namespace colmap_gcn {
+namespace {
+
+namespace fs = std::filesystem;
+
+void Progress(const std::string& scene, const std::string& message) {
+  std::cerr << "[gcn_benchmark] " << scene << ": " << message << std::endl;
+}
+
+std::string FormatSeconds(double seconds) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.1f s", seconds);
+  return buffer;
+}
+
+// Identifies one benchmark invocation; stored with every matching result so
+// the report can tell when cached times come from different runs.
+std::string NewSessionId() {
+  const std::time_t now = std::time(nullptr);
+  char buffer[64];
+  std::strftime(
+      buffer, sizeof(buffer), "%Y-%m-%dT%H:%M:%S", std::localtime(&now));
+  return std::string(buffer) + "-" + std::to_string(getpid());
+}
+
+void RemovePath(const std::string& path) {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
+void CopyDatabase(const std::string& from, const std::string& to) {
+  for (const char* suffix : {"",
+                             "-wal",
+                             "-shm",
+                             ".gcn-partial",
+                             ".gcn-partial.source",
+                             ".gcn-partial.pairs.txt"}) {
+    RemovePath(to + suffix);
+  }
+  std::error_code ec;
+  fs::copy_file(from, to, ec);
+  if (ec) ThrowError("cannot copy ", from, " to ", to, ": ", ec.message());
+}
+
+int MinNumInliers(const std::vector<std::string>& args) {
+  const std::string kOption = "--SiftMatching.min_num_inliers";
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == kOption && i + 1 < args.size())
+      return std::stoi(args[i + 1]);
+    if (StringStartsWith(args[i], kOption + "=")) {
+      return std::stoi(args[i].substr(kOption.size() + 1));
+    }
+  }
+  return PairMatchingOptions().min_num_inliers;
+}
+
+bool HasOption(const std::vector<std::string>& args, const std::string& name) {
+  for (const std::string& arg : args) {
+    if (arg == name || StringStartsWith(arg, name + "=")) return true;
+  }
+  return false;
+}
+
+// Everything the methods of one scene share.
+struct SceneContext {
+  Dataset dataset;
+  std::string dir;
+  std::string base_db;
+  std::vector<DatabaseImage> images;
+  std::map<image_t, std::string> names_by_id;
+  std::vector<std::string> image_names;  // sorted
+  bool has_gt = false;
+  Reconstruction gt;  // restricted to the database's images
+  PairLabels labels;
+  std::string oracle_pairs_path;
+};
+
+class BenchmarkRunner {
+ public:
+  explicit BenchmarkRunner(const BenchmarkOptions& options)
+      : options_(options),
+        session_(NewSessionId()),
+        methods_(ParseBenchmarkMethods(options.methods)) {}
+
+  BenchmarkResults Run();
+
+ private:
+  SceneResult RunScene(const DatasetSpec& spec);
+  void Extract(SceneContext* scene, SceneResult* result);
+  void LoadGroundTruth(SceneContext* scene);
+  void BuildLabels(SceneContext* scene, SceneResult* result);
+  std::string MethodDir(const SceneContext& scene,
+                        const BenchmarkMethod& method) const {
+    return JoinPaths(scene.dir, method.DirName());
+  }
+  // Runs (or reads from the cache) the matching and mapping of a method;
+  // returns its run record. Matching and mapping are cached separately so
+  // the exhaustive matches can serve the labels first.
+  JsonValue MatchMethod(const SceneContext& scene,
+                        const BenchmarkMethod& method);
+  JsonValue MapMethod(const SceneContext& scene, const BenchmarkMethod& method);
+  MethodResult EvaluateMethod(const SceneContext& scene,
+                              const BenchmarkMethod& method,
+                              const JsonValue& run,
+                              SceneResult* scene_result);
+  std::unique_ptr<PairGenerator> CreateGenerator(
+      const SceneContext& scene, const BenchmarkMethod& method) const;
+  const ColmapRunner& Colmap(const SceneContext& scene);
+
+  const BenchmarkOptions& options_;
+  const std::string session_;
+  const std::vector<BenchmarkMethod> methods_;
+  std::unique_ptr<ColmapRunner> colmap_;
+  std::string colmap_log_;
+};
+
+const ColmapRunner& BenchmarkRunner::Colmap(const SceneContext& scene) {
+  const std::string log_path = JoinPaths(scene.dir, "colmap.log");
+  if (!colmap_ || colmap_log_ != log_path) {
+    ColmapRunnerOptions runner_options;
+    runner_options.colmap_exe = options_.colmap_exe;
+    runner_options.log_path = log_path;
+    runner_options.verbose = options_.verbose;
+    runner_options.show_progress = options_.verbose;
+    colmap_ = std::make_unique<ColmapRunner>(runner_options);
+    colmap_log_ = log_path;
+  }
+  return *colmap_;
+}
+
+void BenchmarkRunner::Extract(SceneContext* scene, SceneResult* result) {
+  const std::string record_path = JoinPaths(scene->dir, "extraction.json");
+  scene->base_db = JoinPaths(scene->dir, "base.db");
+  if (ExistsFile(record_path) && ExistsFile(scene->base_db)) {
+    result->extraction_seconds =
+        ReadJsonFile(record_path).GetDoubleOr("seconds", 0);
+    Progress(scene->dataset.name, "features cached in " + scene->base_db);
+    return;
+  }
+  Progress(scene->dataset.name,
+           "feature_extractor on " +
+               std::to_string(scene->dataset.image_names.size()) + " images");
+  // COLMAP extracts into a scratch file that replaces base.db only when
+  // complete, so an interrupted extraction is redone rather than trusted.
+  const std::string partial = scene->base_db + ".partial";
+  for (const char* suffix : {"", "-wal", "-shm"}) {
+    RemovePath(partial + suffix);
+    RemovePath(scene->base_db + suffix);
+  }
+  std::vector<std::string> args = {
+      "--database_path", partial, "--image_path", scene->dataset.image_path};
+  if (!scene->dataset.image_list_path.empty()) {
+    args.push_back("--image_list_path");
+    args.push_back(scene->dataset.image_list_path);
+  }
+  if (scene->dataset.single_camera &&
+      !HasOption(options_.extraction_args, "--ImageReader.single_camera")) {
+    args.push_back("--ImageReader.single_camera");
+    args.push_back("1");
+  }
+  args.insert(args.end(),
+              options_.extraction_args.begin(),
+              options_.extraction_args.end());
+  const Timer timer;
+  Colmap(*scene).Run("feature_extractor", args);
+  result->extraction_seconds = timer.ElapsedSeconds();
+  std::error_code ec;
+  fs::rename(partial, scene->base_db, ec);
+  if (ec) ThrowError("cannot rename ", partial, ": ", ec.message());
+  JsonValue record = JsonValue::Object();
+  record["seconds"] = result->extraction_seconds;
+  record["session"] = session_;
+  WriteJsonFile(record_path, record);
+  Progress(
+      scene->dataset.name,
+      "features extracted in " + FormatSeconds(result->extraction_seconds));
+}
+
+void BenchmarkRunner::LoadGroundTruth(SceneContext* scene) {
+  if (scene->dataset.gt_path.empty()) return;
+  Reconstruction gt;
+  gt.Read(scene->dataset.gt_path);
+  std::set<std::string> names(scene->image_names.begin(),
+                              scene->image_names.end());
+  for (const auto& [image_id, image] : gt.images) {
+    if (names.count(image.name) == 0) continue;
+    scene->gt.images[image_id] = image;
+    scene->gt.images[image_id].points2D.clear();
+    scene->gt.images[image_id].point3D_ids.clear();
+    scene->gt.cameras[image.camera_id] = gt.cameras.at(image.camera_id);
+  }
+  scene->has_gt = scene->gt.images.size() >= 3;
+}
+
+void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
+  const std::string labels_dir = JoinPaths(scene->dir, "labels");
+  CreateDirIfNotExists(labels_dir);
+  const std::string labels_path = JoinPaths(labels_dir, "labels.csv");
+  const std::string& name = scene->dataset.name;
+  if (ExistsFile(labels_path)) {
+    scene->labels = PairLabels::Read(labels_path);
+    Progress(name, "labels cached in " + labels_path);
+  } else {
+    const std::set<std::string> db_names(scene->image_names.begin(),
+                                         scene->image_names.end());
+    switch (scene->dataset.label_source) {
+      case LabelSource::kSyntheticOverlap: {
+        const PairOverlapTable table =
+            ReadPairOverlapTable(scene->dataset.overlap_path);
+        std::set<std::string> names;
+        for (const PairOverlap& pair : table.Pairs()) {
+          if (db_names.count(pair.name1)) names.insert(pair.name1);
+          if (db_names.count(pair.name2)) names.insert(pair.name2);
+        }
+        scene->labels = PairLabels({names.begin(), names.end()},
+                                   /*has_overlap=*/true,
+                                   /*has_common_track_ratio=*/false);
+        for (const PairOverlap& pair : table.Pairs()) {
+          // MO = shared / min(visible1, visible2), the same normalisation
+          // as the common-track ratio, so both thresholds read alike.
+          if (pair.num_shared > 0 &&
+              scene->labels.IsLabelled(pair.name1, pair.name2)) {
+            scene->labels.SetOverlap(pair.name1, pair.name2, pair.MaxOverlap());
+          }
+        }
+        break;
+      }
+      case LabelSource::kGroundTruthTriangulation: {
+        const BenchmarkMethod exhaustive = ParseBenchmarkMethod("exhaustive");
+        MatchMethod(*scene, exhaustive);
+        Progress(name,
+                 "triangulating the exhaustive matches on the GT "
+                 "cameras (point_triangulator)");
+        const Reconstruction triangulated = TriangulateOnGroundTruth(
+            Colmap(*scene),
+            scene->gt,
+            JoinPaths(MethodDir(*scene, exhaustive), "database.db"),
+            JoinPaths(labels_dir, "gt_triangulation"));
+        std::vector<std::string> names;
+        for (const auto& [id, image] : scene->gt.images) {
+          names.push_back(image.name);
+        }
+        scene->labels =
+            LabelsFromReconstruction(triangulated, names, "GT cameras");
+        break;
+      }
+      case LabelSource::kReferenceModel: {
+        Reconstruction reference;
+        reference.Read(scene->dataset.reference_path);
+        scene->labels = LabelsFromReconstruction(
+            reference, scene->image_names, "reference model");
+        break;
+      }
+      case LabelSource::kExhaustiveReference: {
+        const BenchmarkMethod exhaustive = ParseBenchmarkMethod("exhaustive");
+        MatchMethod(*scene, exhaustive);
+        const JsonValue run = MapMethod(*scene, exhaustive);
+        const SfmMetrics sfm = EvaluateSparseModels(
+            JoinPaths(MethodDir(*scene, exhaustive), "sparse"),
+            scene->images.size(),
+            nullptr,
+            options_.pose);
+        if (sfm.largest_model_path.empty()) {
+          ThrowError("no exhaustive reference model for the labels of ", name);
+        }
+        Reconstruction reference;
+        reference.Read(sfm.largest_model_path);
+        scene->labels = LabelsFromReconstruction(
+            reference, scene->image_names, "exhaustive reference model");
+        break;
+      }
+    }
+    scene->labels.source = LabelSourceName(scene->dataset.label_source);
+    scene->labels.Write(labels_path);
+  }
+  // The oracle's pairs depend on the thresholds, so they are rewritten on
+  // every run (the oracle's cache records the thresholds it used).
+  std::ostringstream pairs;
+  for (const auto& [name1, name2] :
+       scene->labels.MatchablePairs(options_.labels)) {
+    pairs << name1 << " " << name2 << "\n";
+  }
+  scene->oracle_pairs_path = JoinPaths(labels_dir, "oracle_pairs.txt");
+  WriteFileAtomically(scene->oracle_pairs_path, pairs.str());
+  result->label_source = scene->labels.source;
+  result->num_labelled_images = scene->labels.ImageNames().size();
+  result->num_matchable_pairs =
+      scene->labels.MatchablePairs(options_.labels).size();
+  Progress(name,
+           std::to_string(result->num_matchable_pairs) +
+               " matchable pairs among " +
+               std::to_string(result->num_labelled_images) +
+               " labelled images (" + scene->labels.source + ")");
+}
+
+std::unique_ptr<PairGenerator> BenchmarkRunner::CreateGenerator(
+    const SceneContext& scene, const BenchmarkMethod& method) const {
+  const std::vector<std::string> args = GcnMatchingArguments(
+      method, scene.images.size(), scene.oracle_pairs_path);
+  const Database database(scene.base_db);
+  return options_.pair_generator_factory
+             ? options_.pair_generator_factory(args, database)
+             : CreateBasicPairGenerator(args, database);
+}
+
+JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
+                                       const BenchmarkMethod& method) {
+  const std::string dir = MethodDir(scene, method);
+  const std::string run_path = JoinPaths(dir, "run.json");
+  const std::string& name = scene.dataset.name;
+  if (ExistsFile(run_path)) {
+    JsonValue run = ReadJsonFile(run_path);
+    const bool thresholds_changed =
+        method.IsOracle() &&
+        (run.GetDoubleOr("tau_mo", -1) != options_.labels.min_overlap ||
+         run.GetDoubleOr("tau_ct", -1) !=
+             options_.labels.min_common_track_ratio);
+    if (!thresholds_changed) {
+      Progress(name, method.spec + ": matching cached");
+      return run;
+    }
+    Progress(name, method.spec + ": label thresholds changed, rerunning");
+  }
+  RemovePath(dir);
+  CreateDirIfNotExists(dir);
+
+  JsonValue run = JsonValue::Object();
+  run["method"] = method.spec;
+  run["k"] = method.EffectiveK(scene.images.size());
+  run["session"] = session_;
+  if (method.IsOracle()) {
+    run["tau_mo"] = options_.labels.min_overlap;
+    run["tau_ct"] = options_.labels.min_common_track_ratio;
+  }
+  std::vector<ImagePair> pairs;
+  const Timer pairing_timer;
+  try {
+    pairs = CreateGenerator(scene, method)->AllPairs();
+  } catch (const Error& error) {
+    // Not cached: the method may exist in the next build.
+    RemovePath(dir);
+    Progress(name, method.spec + ": unavailable (" + error.what() + ")");
+    run["status"] = "unavailable";
+    run["message"] = error.what();
+    return run;
+  }
+  run["pairing_seconds"] = pairing_timer.ElapsedSeconds();
+
+  const std::string db = JoinPaths(dir, "database.db");
+  CopyDatabase(scene.base_db, db);
+  PairMatchingOptions matching_options;
+  matching_options.pairs_path = JoinPaths(dir, "pairs.txt");
+  matching_options.colmap_args = options_.matching_args;
+  Progress(
+      name,
+      method.spec + ": matching " + std::to_string(pairs.size()) + " pairs");
+  try {
+    const PairMatchingSummary summary =
+        MatchImagePairs(Colmap(scene), db, pairs, matching_options);
+    run["status"] = "ok";
+    run["tam"] = JsonValue(static_cast<uint64_t>(summary.num_attempted_pairs));
+    run["um"] = JsonValue(static_cast<uint64_t>(summary.num_verified_pairs));
+    run["matching_seconds"] = summary.matching_seconds;
+    Progress(name,
+             method.spec + ": TAM " +
+                 std::to_string(summary.num_attempted_pairs) + ", UM " +
+                 std::to_string(summary.num_verified_pairs) + " in " +
+                 FormatSeconds(summary.matching_seconds));
+  } catch (const Error& error) {
+    run["status"] = "failed";
+    run["message"] = std::string("matching: ") + error.what();
+    Progress(name, method.spec + ": matching failed: " + error.what());
+  }
+  WriteJsonFile(run_path, run);
+  return run;
+}
+
+JsonValue BenchmarkRunner::MapMethod(const SceneContext& scene,
+                                     const BenchmarkMethod& method) {
+  const std::string dir = MethodDir(scene, method);
+  const std::string run_path = JoinPaths(dir, "run.json");
+  JsonValue run = ReadJsonFile(run_path);
+  if (run.GetStringOr("status", "") != "ok" || run.Has("mapping_seconds")) {
+    return run;
+  }
+  const std::string sparse = JoinPaths(dir, "sparse");
+  RemovePath(sparse);
+  CreateDirIfNotExists(sparse);
+  std::vector<std::string> args = {"--database_path",
+                                   JoinPaths(dir, "database.db"),
+                                   "--image_path",
+                                   scene.dataset.image_path,
+                                   "--output_path",
+                                   sparse};
+  if (!HasOption(options_.mapper_args, "--Mapper.num_threads")) {
+    args.push_back("--Mapper.num_threads");
+    args.push_back(std::to_string(options_.mapper_num_threads));
+  }
+  if (!HasOption(options_.mapper_args, "--Mapper.min_model_size")) {
+    // COLMAP discards models under 10 images; the benchmark's small scenes
+    // would lose every partial model, which the tables should show.
+    args.push_back("--Mapper.min_model_size");
+    args.push_back(std::to_string(options_.mapper_min_model_size));
+  }
+  args.insert(
+      args.end(), options_.mapper_args.begin(), options_.mapper_args.end());
+  Progress(scene.dataset.name, method.spec + ": mapper");
+  const Timer timer;
+  try {
+    Colmap(scene).Run("mapper", args);
+  } catch (const Error& error) {
+    // COLMAP 3.8's mapper exits 1 when it builds no model: for the tables
+    // that is a result (0 registered, the paper's "Fail"), not an error.
+    run["message"] = "mapper produced no model";
+    if (!ListSparseModels(sparse).empty()) {
+      run["status"] = "failed";
+      run["message"] = std::string("mapper: ") + error.what();
+    }
+    Progress(scene.dataset.name,
+             method.spec + ": " + run.GetStringOr("message", ""));
+  }
+  run["mapping_seconds"] = timer.ElapsedSeconds();
+  WriteJsonFile(run_path, run);
+  return run;
+}
+
+MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
+                                             const BenchmarkMethod& method,
+                                             const JsonValue& run,
+                                             SceneResult* scene_result) {
+  MethodResult result;
+  result.method = method.spec;
+  result.status = run.GetStringOr("status", "failed");
+  result.message = run.GetStringOr("message", "");
+  result.k = static_cast<int>(run.GetIntOr("k", 0));
+  result.session = run.GetStringOr("session", "");
+  result.pairing_seconds = run.GetDoubleOr("pairing_seconds", 0);
+  result.matching_seconds = run.GetDoubleOr("matching_seconds", 0);
+  result.mapping_seconds = run.GetDoubleOr("mapping_seconds", 0);
+  result.num_attempted = run.GetIntOr("tam", 0);
+  result.num_verified = run.GetIntOr("um", 0);
+  const std::string dir = MethodDir(scene, method);
+  const std::string pairs_path = JoinPaths(dir, "pairs.txt");
+  if (!ExistsFile(pairs_path)) return result;
+
+  const std::vector<ImageNamePair> attempted = ReadPairsFile(pairs_path);
+  result.retrieval =
+      ComputeRetrievalMetrics(attempted, scene.labels, options_.labels);
+  std::vector<ImageNamePair> verified;
+  {
+    const Database database(JoinPaths(dir, "database.db"));
+    const int min_num_inliers = MinNumInliers(options_.matching_args);
+    for (const TwoViewGeometryInfo& info :
+         database.ReadTwoViewGeometryInfos()) {
+      if (!IsVerifiedTwoViewGeometry(
+              info.config, info.num_inliers, min_num_inliers)) {
+        continue;
+      }
+      const ImagePair pair = PairIdToImagePair(info.pair_id);
+      const auto a = scene.names_by_id.find(pair.first);
+      const auto b = scene.names_by_id.find(pair.second);
+      if (a == scene.names_by_id.end() || b == scene.names_by_id.end()) {
+        continue;
+      }
+      verified.emplace_back(a->second, b->second);
+      if (scene.labels.SharesNothing(a->second, b->second)) {
+        ++result.num_verified_wrong;
+      }
+    }
+  }
+  result.sfm = EvaluateSparseModels(JoinPaths(dir, "sparse"),
+                                    scene.images.size(),
+                                    scene.has_gt ? &scene.gt : nullptr,
+                                    options_.pose);
+
+  const std::string figure_dir =
+      JoinPaths(JoinPaths(options_.output_path, "figures"), scene.dataset.name);
+  CreateDirIfNotExists(figure_dir);
+  const std::string figure = method.DirName() + "_view_graph.png";
+  WriteViewGraphImage(JoinPaths(figure_dir, figure),
+                      scene.image_names,
+                      attempted,
+                      verified,
+                      scene.labels,
+                      options_.labels);
+  scene_result->figures.push_back("figures/" + scene.dataset.name + "/" +
+                                  figure);
+  WriteJsonFile(JoinPaths(dir, "result.json"), MethodResultToJson(result));
+  return result;
+}
+
+void WritePrecisionRecallFigure(const std::string& output_path,
+                                const std::vector<BenchmarkMethod>& methods,
+                                SceneResult* scene) {
+  std::map<std::string, PrecisionRecallSeries> series;
+  std::vector<std::pair<std::string, std::pair<double, double>>> references;
+  for (size_t i = 0; i < methods.size(); ++i) {
+    const MethodResult& result = scene->methods[i];
+    if (!result.Ok() || result.retrieval.num_pairs == 0) continue;
+    if (methods[i].k > 0) {
+      PrecisionRecallSeries& s = series[methods[i].pairing];
+      s.name = methods[i].pairing;
+      s.k.push_back(result.k);
+      s.precision.push_back(result.retrieval.precision);
+      s.recall.push_back(result.retrieval.recall);
+    } else if (methods[i].pairing != "exhaustive") {
+      references.emplace_back(
+          methods[i].spec,
+          std::make_pair(result.retrieval.precision, result.retrieval.recall));
+    }
+  }
+  if (series.empty()) return;
+  std::vector<PrecisionRecallSeries> ordered;
+  for (auto& [name, s] : series) ordered.push_back(s);
+  const std::string relative = "figures/" + scene->name + "/pr_vs_k.png";
+  WritePrecisionRecallPlot(JoinPaths(output_path, relative),
+                           scene->name + ": precision / recall vs k",
+                           ordered,
+                           references);
+  scene->figures.push_back(relative);
+}
+
+SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
+  SceneResult result;
+  result.name = spec.name;
+  SceneContext scene;
+  scene.dir = JoinPaths(options_.output_path, spec.name);
+  scene.dataset = PrepareDataset(spec, scene.dir);
+  result.kind = scene.dataset.kind;
+  Extract(&scene, &result);
+  {
+    const Database database(scene.base_db);
+    scene.images = database.ReadAllImages();
+  }
+  for (const DatabaseImage& image : scene.images) {
+    scene.names_by_id[image.image_id] = image.name;
+    scene.image_names.push_back(image.name);
+  }
+  std::sort(scene.image_names.begin(), scene.image_names.end());
+  result.num_images = scene.images.size();
+  result.image_names = scene.image_names;
+  LoadGroundTruth(&scene);
+  result.has_gt_cameras = scene.has_gt;
+  BuildLabels(&scene, &result);
+
+  for (size_t m = 0; m < methods_.size(); ++m) {
+    const BenchmarkMethod& method = methods_[m];
+    // On small scenes several k are capped to the same N - 1: the pairs
+    // are identical, so the first such run stands for the others.
+    const int k = method.EffectiveK(scene.images.size());
+    bool duplicate = false;
+    for (size_t earlier = 0; earlier < m && k > 0 && !duplicate; ++earlier) {
+      if (methods_[earlier].pairing == method.pairing &&
+          methods_[earlier].EffectiveK(scene.images.size()) == k &&
+          result.methods[earlier].Ok()) {
+        MethodResult copy = result.methods[earlier];
+        copy.method = method.spec;
+        copy.message =
+            "same pairs as " + methods_[earlier].spec + " (k capped at N-1)";
+        result.methods.push_back(copy);
+        duplicate = true;
+      }
+    }
+    if (duplicate) continue;
+    JsonValue run = MatchMethod(scene, method);
+    if (run.GetStringOr("status", "") == "ok") {
+      run = MapMethod(scene, method);
+    }
+    MethodResult method_result = EvaluateMethod(scene, method, run, &result);
+    if (method_result.Ok()) {
+      const SfmMetrics& sfm = method_result.sfm;
+      Progress(
+          spec.name,
+          method.spec + ": registered " + std::to_string(sfm.num_registered) +
+              "/" + std::to_string(sfm.num_images) + " in " +
+              std::to_string(sfm.num_models) + " model(s), P " +
+              std::to_string(method_result.retrieval.precision).substr(0, 5) +
+              " R " +
+              std::to_string(method_result.retrieval.recall).substr(0, 5));
+    }
+    result.methods.push_back(method_result);
+  }
+  WritePrecisionRecallFigure(options_.output_path, methods_, &result);
+  return result;
+}
+
+BenchmarkResults BenchmarkRunner::Run() {
+  BenchmarkResults results;
+  results.command = options_.command;
+  results.label_options = options_.labels;
+  results.pose_options = options_.pose;
+  for (const BenchmarkMethod& method : methods_) {
+    results.methods.push_back(method.spec);
+  }
+  CreateDirIfNotExists(options_.output_path);
+  const std::vector<DatasetSpec> specs = ParseDatasetSpecs(options_.datasets);
+  for (size_t i = 0; i < specs.size(); ++i) {
+    Progress(
+        specs[i].name,
+        "scene " + std::to_string(i + 1) + "/" + std::to_string(specs.size()));
+    try {
+      results.scenes.push_back(RunScene(specs[i]));
+    } catch (const Error& error) {
+      // One broken scene must not cost the others' results.
+      SceneResult failed;
+      failed.name = specs[i].name;
+      failed.status = "failed";
+      failed.message = error.what();
+      Progress(specs[i].name, std::string("FAILED: ") + error.what());
+      results.scenes.push_back(failed);
+    }
+    // The report is rewritten after every scene: partial results are
+    // readable while a long run continues.
+    WriteBenchmarkReport(results, options_.output_path);
+  }
+  return results;
+}
+
+}  // namespace
+
+std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
+    const std::vector<std::string>& gcn_matching_args,
+    const Database& database) {
+  GcnMatchingOptions options;
+  for (size_t i = 0; i < gcn_matching_args.size(); i += 2) {
+    const std::string& name = gcn_matching_args[i];
+    if (i + 1 >= gcn_matching_args.size()) {
+      ThrowError("option ", name, " has no value");
+    }
+    const std::string& value = gcn_matching_args[i + 1];
+    if (name == "--GcnMatching.pairing") {
+      options.pairing = value;
+    } else if (name == "--GcnMatching.match_list_path") {
+      options.match_list_path = value;
+    } else {
+      ThrowError("option ", name, " is not supported by this build");
+    }
+  }
+  return CreatePairGenerator(options, database);
+}
+
+bool BenchmarkOptions::Check() const {
+  return !datasets.empty() && !methods.empty() && !output_path.empty() &&
+         labels.Check() && pose.Check() && mapper_num_threads != 0;
+}
+
+BenchmarkResults RunBenchmark(const BenchmarkOptions& options) {
+  if (!options.Check()) {
+    ThrowError(
+        "invalid benchmark options: --datasets, --methods and "
+        "--output_path are required; thresholds must be in (0, 1]");
+  }
+  return BenchmarkRunner(options).Run();
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,83 @@
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "evaluation/alignment.h"
+#include "evaluation/labels.h"
+#include "evaluation/results.h"
+#include "feature/pairing.h"
+#include "scene/database.h"
+
+namespace colmap_gcn {
+
+// Builds a method's PairGenerator from its --GcnMatching.* arguments (see
+// GcnMatchingArguments). Throws Error when the method cannot be built in
+// this binary (the benchmark then reports it as unavailable).
+typedef std::function<std::unique_ptr<PairGenerator>(
+    const std::vector<std::string>& gcn_matching_args,
+    const Database& database)>
+    PairGeneratorFactory;
+
+// Handles only --GcnMatching.pairing and --GcnMatching.match_list_path and
+// calls CreatePairGenerator; any other option is an Error. The
+// gcn_benchmark command passes a factory that parses every option
+// gcn_matcher knows.
+std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
+    const std::vector<std::string>& gcn_matching_args,
+    const Database& database);
+
+struct BenchmarkOptions {
+  // Comma list of scene folders or synth:<family>:<n>[:seed].
+  std::string datasets = "";
+
+  // Comma list of methods (see method.h), run in this order on each scene.
+  std::string methods = "exhaustive,knn:25,vocab_tree:25,gcn,oracle";
+
+  // Everything goes here: <output_path>/<scene>/..., report.md,
+  // results.csv, results.json, figures/.
+  std::string output_path = "";
+
+  PairLabelOptions labels;
+  PoseErrorOptions pose;
+
+  // Mapper threads; 1 makes mapper runs repeatable (COLMAP's own advice).
+  int mapper_num_threads = 1;
+
+  // Mapper models with fewer registered images are discarded (COLMAP's
+  // default 10 would drop every partial model of a small scene).
+  int mapper_min_model_size = 3;
+
+  // Passed to COLMAP: feature_extractor (--ImageReader.*,
+  // --SiftExtraction.*), matches_importer (--SiftMatching.*), mapper
+  // (--Mapper.*).
+  std::vector<std::string> extraction_args;
+  std::vector<std::string> matching_args;
+  std::vector<std::string> mapper_args;
+
+  // Show all of COLMAP's output.
+  bool verbose = false;
+
+  // Real COLMAP binary ("" finds it, see ColmapRunner).
+  std::string colmap_exe = "";
+
+  // Null: CreateBasicPairGenerator.
+  PairGeneratorFactory pair_generator_factory;
+
+  // Recorded in the report.
+  std::string command = "";
+
+  bool Check() const;
+};
+
+// Runs every method on every scene (extraction once per scene, methods
+// interleaved per scene so their times are comparable), caching per scene
+// and method so an interrupted run resumes, evaluates against the labels
+// and writes the report (see report.h). A method that cannot be built is
+// "unavailable", one whose COLMAP run fails is "failed"; neither stops the
+// run. Throws Error on invalid options or an unusable dataset.
+BenchmarkResults RunBenchmark(const BenchmarkOptions& options);
+
+}  // namespace colmap_gcn

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "evaluation/labels.h"
+#include "feature/pairs_io.h"
+
+namespace colmap_gcn {
+
+// The view graph of one method as an N x N adjacency image (images in name
+// order), like the paper's Fig. 5. Upper triangle: the method's pairs --
+// verified and matchable green, verified but below the label thresholds
+// olive, verified although the images share nothing (wrong) red, attempted
+// but not verified light grey. Lower triangle: the labels -- matchable
+// pairs dark grey, so missed pairs stand out against the upper triangle.
+// Written as PNG; throws Error if it cannot be written.
+void WriteViewGraphImage(const std::string& path,
+                         const std::vector<std::string>& image_names,
+                         const std::vector<ImageNamePair>& attempted,
+                         const std::vector<ImageNamePair>& verified,
+                         const PairLabels& labels,
+                         const PairLabelOptions& label_options);
+
+// One precision/recall curve against k per method family.
+struct PrecisionRecallSeries {
+  std::string name;  // "knn", "vocab_tree"
+  std::vector<int> k;
+  std::vector<double> precision;
+  std::vector<double> recall;
+};
+
+// Precision (solid) and recall (dashed) against k, one colour per series,
+// plus horizontal reference lines for methods without k (e.g. gcn, oracle:
+// name, precision, recall). Written as PNG.
+void WritePrecisionRecallPlot(
+    const std::string& path,
+    const std::string& title,
+    const std::vector<PrecisionRecallSeries>& series,
+    const std::vector<std::pair<std::string, std::pair<double, double>>>&
+        references);
+
+}  // namespace colmap_gcn

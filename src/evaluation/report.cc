@@ -1,0 +1,341 @@
+#include "evaluation/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "util/file.h"
+
+namespace colmap_gcn {
+namespace {
+
+std::string Format(const char* format, double value) {
+  if (!std::isfinite(value)) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
+  return buffer;
+}
+
+std::string Count(size_t value) { return std::to_string(value); }
+
+// A markdown table builder.
+class Table {
+ public:
+  explicit Table(const std::vector<std::string>& header) : header_(header) {}
+  void Row(const std::vector<std::string>& cells) { rows_.push_back(cells); }
+  bool Empty() const { return rows_.empty(); }
+  std::string Str() const {
+    std::ostringstream out;
+    const auto line = [&](const std::vector<std::string>& cells) {
+      out << "|";
+      for (size_t i = 0; i < header_.size(); ++i) {
+        out << " " << (i < cells.size() ? cells[i] : "") << " |";
+      }
+      out << "\n";
+    };
+    line(header_);
+    out << "|";
+    for (size_t i = 0; i < header_.size(); ++i)
+      out << (i == 0 ? "---|" : "---:|");
+    out << "\n";
+    for (const auto& row : rows_) line(row);
+    return out.str();
+  }
+
+ private:
+  std::vector<std::string> header_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+std::string MethodLabel(const MethodResult& result, size_t num_images) {
+  // Show the cap when k was limited by the scene size.
+  const size_t colon = result.method.find(':');
+  if (result.k > 0 && colon != std::string::npos &&
+      std::to_string(result.k) != result.method.substr(colon + 1)) {
+    return result.method + " (k=" + std::to_string(result.k) + ", N-1)";
+  }
+  (void)num_images;
+  return result.method;
+}
+
+std::string StatusRow(const MethodResult& result) {
+  std::string message = result.message;
+  if (message.size() > 120) message = message.substr(0, 117) + "...";
+  for (char& c : message) {
+    if (c == '|') c = '/';
+  }
+  return result.status + (message.empty() ? "" : ": " + message);
+}
+
+const MethodResult* FindExhaustive(const SceneResult& scene) {
+  for (const MethodResult& method : scene.methods) {
+    if (method.method == "exhaustive" && method.Ok()) return &method;
+  }
+  return nullptr;
+}
+
+void SceneSection(const SceneResult& scene, std::ostringstream* out) {
+  *out << "## " << scene.name << "\n\n";
+  if (scene.status != "ok") {
+    *out << "**" << scene.status << "**: " << scene.message << "\n\n";
+    return;
+  }
+  *out << scene.num_images << " images (" << scene.kind
+       << "); labels: " << scene.label_source << ", "
+       << scene.num_matchable_pairs << " matchable pairs among "
+       << scene.num_labelled_images << " labelled images; feature extraction "
+       << Format("%.1f", scene.extraction_seconds) << " s.\n\n";
+  std::set<std::string> sessions;
+  for (const MethodResult& method : scene.methods) {
+    if (method.Ok() && !method.session.empty()) sessions.insert(method.session);
+  }
+  if (sessions.size() > 1) {
+    *out << "_Note: matching times on this scene come from " << sessions.size()
+         << " different runs (cached results); rerun into a fresh output "
+            "folder for comparable times._\n\n";
+  }
+
+  Table retrieval({"method",
+                   "k",
+                   "pairs",
+                   "true pos.",
+                   "precision",
+                   "recall",
+                   "F-measure",
+                   "wrong pairs"});
+  Table matching({"method",
+                  "UM/TAM",
+                  "ratio",
+                  "verified wrong",
+                  "pairing (s)",
+                  "matching (s)",
+                  "speedup vs exhaustive"});
+  Table mapping({"method",
+                 "images",
+                 "registered",
+                 "models",
+                 "points",
+                 "observations",
+                 "track length",
+                 "reproj. error (px)",
+                 "mapping (s)"});
+  Table pose({"method",
+              "aligned",
+              "median rot. (deg)",
+              "median pos. (% extent)",
+              "rot. ok",
+              "pos. ok",
+              "accurate"});
+  const MethodResult* exhaustive = FindExhaustive(scene);
+  for (const MethodResult& method : scene.methods) {
+    const std::string label = MethodLabel(method, scene.num_images);
+    if (!method.Ok()) {
+      const std::string status = StatusRow(method);
+      retrieval.Row({label, status});
+      matching.Row({label, status});
+      mapping.Row({label, status});
+      if (scene.has_gt_cameras) pose.Row({label, status});
+      continue;
+    }
+    const RetrievalMetrics& r = method.retrieval;
+    retrieval.Row({label,
+                   method.k > 0 ? std::to_string(method.k) : "-",
+                   Count(r.num_pairs),
+                   Count(r.num_true_positives),
+                   Format("%.3f", r.precision),
+                   Format("%.3f", r.recall),
+                   Format("%.3f", r.f_measure),
+                   Count(r.num_wrong_pairs)});
+    std::string speedup = "-";
+    if (exhaustive != nullptr && method.matching_seconds > 0) {
+      speedup =
+          "x" + Format("%.2f",
+                       exhaustive->matching_seconds / method.matching_seconds);
+    }
+    matching.Row(
+        {label,
+         Count(method.num_verified) + "/" + Count(method.num_attempted),
+         Format("%.3f", method.UsefulRatio()),
+         Count(method.num_verified_wrong),
+         Format("%.2f", method.pairing_seconds),
+         Format("%.1f", method.matching_seconds),
+         speedup});
+    const SfmMetrics& s = method.sfm;
+    mapping.Row({label,
+                 Count(s.num_images),
+                 Count(s.num_registered),
+                 Count(s.num_models),
+                 Count(s.num_points3D),
+                 Count(s.num_observations),
+                 Format("%.3f", s.mean_track_length),
+                 Format("%.3f", s.mean_reprojection_error),
+                 Format("%.1f", method.mapping_seconds)});
+    if (scene.has_gt_cameras && s.has_pose_errors) {
+      const PoseErrors& p = s.pose_errors;
+      if (!p.aligned) {
+        pose.Row({label,
+                  Count(p.num_evaluated) + "/" + Count(p.num_gt_images),
+                  "-",
+                  "-",
+                  "0%",
+                  "0%",
+                  "0%"});
+      } else {
+        pose.Row({label,
+                  Count(p.num_evaluated) + "/" + Count(p.num_gt_images),
+                  Format("%.2f", p.median_rotation_error_deg),
+                  Format("%.2f", 100 * p.median_position_error),
+                  Format("%.0f%%", 100 * p.fraction_rotation_ok),
+                  Format("%.0f%%", 100 * p.fraction_position_ok),
+                  Format("%.0f%%", 100 * p.fraction_accurate)});
+      }
+    }
+  }
+  *out << "### Matchable image retrieval (Tables 1-2)\n\n"
+       << retrieval.Str() << "\n### Matching (Tables 3, 5)\n\n"
+       << matching.Str() << "\n### Mapping, largest model (Tables 4, 6)\n\n"
+       << mapping.Str();
+  if (!pose.Empty()) {
+    *out << "\n### Cameras against ground truth (similarity-aligned)\n\n"
+         << pose.Str();
+  }
+  if (!scene.figures.empty()) {
+    *out << "\n";
+    for (const std::string& figure : scene.figures) {
+      *out << "![" << figure << "](" << figure << ")\n";
+    }
+  }
+  *out << "\n";
+}
+
+}  // namespace
+
+std::string FormatBenchmarkReport(const BenchmarkResults& results) {
+  std::ostringstream out;
+  out << "# colmap-gcn benchmark\n\n";
+  if (!results.command.empty()) {
+    out << "```sh\n" << results.command << "\n```\n\n";
+  }
+  out << "Labels: a pair is matchable when MO >= "
+      << Format("%.2f", results.label_options.min_overlap) << " or CT >= "
+      << Format("%.2f", results.label_options.min_common_track_ratio)
+      << "; wrong pairs share no surface / 3D point under the ground truth. "
+         "Accurate cameras: rotation error <= "
+      << Format("%.1f", results.pose_options.max_rotation_error_deg)
+      << " deg and position error <= "
+      << Format("%.1f", 100 * results.pose_options.max_position_error)
+      << "% of the scene extent, after a similarity alignment of the "
+         "largest model's camera centres; fractions are over all images "
+         "with ground truth.\n\n";
+
+  // Averages over scenes (paper Tables 1-2 average over GL3D scenes).
+  out << "## Average over scenes\n\n";
+  Table average({"method",
+                 "scenes",
+                 "precision",
+                 "recall",
+                 "F-measure",
+                 "wrong pairs",
+                 "UM/TAM",
+                 "verified wrong",
+                 "registered",
+                 "accurate cameras"});
+  for (const std::string& spec : results.methods) {
+    std::vector<RetrievalMetrics> retrieval;
+    double ratio = 0, accurate = 0;
+    size_t verified_wrong = 0, registered = 0, images = 0, with_pose = 0;
+    size_t unavailable = 0;
+    for (const SceneResult& scene : results.scenes) {
+      for (const MethodResult& method : scene.methods) {
+        if (method.method != spec) continue;
+        if (!method.Ok()) {
+          ++unavailable;
+          continue;
+        }
+        retrieval.push_back(method.retrieval);
+        ratio += method.UsefulRatio();
+        verified_wrong += method.num_verified_wrong;
+        registered += method.sfm.num_registered;
+        images += method.sfm.num_images;
+        if (method.sfm.has_pose_errors) {
+          accurate += method.sfm.pose_errors.fraction_accurate;
+          ++with_pose;
+        }
+      }
+    }
+    if (retrieval.empty()) {
+      average.Row({spec, "0", unavailable > 0 ? "unavailable" : "-"});
+      continue;
+    }
+    const RetrievalMetrics mean = AverageRetrievalMetrics(retrieval);
+    average.Row(
+        {spec,
+         Count(retrieval.size()),
+         Format("%.3f", mean.precision),
+         Format("%.3f", mean.recall),
+         Format("%.3f", mean.f_measure),
+         Count(mean.num_wrong_pairs),
+         Format("%.3f", ratio / retrieval.size()),
+         Count(verified_wrong),
+         Count(registered) + "/" + Count(images),
+         with_pose > 0 ? Format("%.0f%%", 100 * accurate / with_pose) : "-"});
+  }
+  out << average.Str() << "\n";
+  for (const SceneResult& scene : results.scenes) SceneSection(scene, &out);
+  return out.str();
+}
+
+std::string FormatBenchmarkCsv(const BenchmarkResults& results) {
+  std::ostringstream out;
+  out << "scene,method,status,k,tam,um,um_over_tam,verified_wrong,"
+         "pairing_s,matching_s,mapping_s,precision,recall,f_measure,"
+         "true_positives,matchable,wrong_pairs,images,registered,models,"
+         "points,observations,track_length,reprojection_error,"
+         "median_rotation_deg,median_position_rel,fraction_accurate\n";
+  for (const SceneResult& scene : results.scenes) {
+    for (const MethodResult& m : scene.methods) {
+      const SfmMetrics& s = m.sfm;
+      const bool pose = s.has_pose_errors && s.pose_errors.aligned;
+      out << scene.name << "," << m.method << "," << m.status << "," << m.k
+          << "," << m.num_attempted << "," << m.num_verified << ","
+          << Format("%.4f", m.UsefulRatio()) << "," << m.num_verified_wrong
+          << "," << Format("%.3f", m.pairing_seconds) << ","
+          << Format("%.3f", m.matching_seconds) << ","
+          << Format("%.3f", m.mapping_seconds) << ","
+          << Format("%.4f", m.retrieval.precision) << ","
+          << Format("%.4f", m.retrieval.recall) << ","
+          << Format("%.4f", m.retrieval.f_measure) << ","
+          << m.retrieval.num_true_positives << "," << m.retrieval.num_matchable
+          << "," << m.retrieval.num_wrong_pairs << "," << s.num_images << ","
+          << s.num_registered << "," << s.num_models << "," << s.num_points3D
+          << "," << s.num_observations << ","
+          << Format("%.4f", s.mean_track_length) << ","
+          << Format("%.4f", s.mean_reprojection_error) << ","
+          << (pose ? Format("%.4f", s.pose_errors.median_rotation_error_deg)
+                   : "")
+          << ","
+          << (pose ? Format("%.5f", s.pose_errors.median_position_error) : "")
+          << ","
+          << (s.has_pose_errors
+                  ? Format("%.4f", s.pose_errors.fraction_accurate)
+                  : "")
+          << "\n";
+    }
+  }
+  return out.str();
+}
+
+void WriteBenchmarkReport(const BenchmarkResults& results,
+                          const std::string& output_path) {
+  CreateDirIfNotExists(output_path);
+  WriteFileAtomically(JoinPaths(output_path, "report.md"),
+                      FormatBenchmarkReport(results));
+  WriteFileAtomically(JoinPaths(output_path, "results.csv"),
+                      FormatBenchmarkCsv(results));
+  WriteJsonFile(JoinPaths(output_path, "results.json"),
+                BenchmarkResultsToJson(results));
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "evaluation/json.h"
+#include "evaluation/labels.h"
+#include "evaluation/metrics.h"
+#include "evaluation/sfm_metrics.h"
+
+namespace colmap_gcn {
+
+// One method on one scene.
+struct MethodResult {
+  std::string method;             // spec, e.g. "knn:25"
+  std::string status = "ok";      // ok | unavailable | failed
+  std::string message;            // why, when not ok
+  int k = 0;                      // effective retrieval depth (0: n/a)
+  size_t num_attempted = 0;       // TAM
+  size_t num_verified = 0;        // UM
+  size_t num_verified_wrong = 0;  // verified pairs that share nothing
+  double pairing_seconds = 0;     // choosing the pairs
+  double matching_seconds = 0;    // COLMAP matching + verification
+  double mapping_seconds = 0;
+  std::string session;  // the benchmark run that matched
+  RetrievalMetrics retrieval;
+  SfmMetrics sfm;
+
+  bool Ok() const { return status == "ok"; }
+  double UsefulRatio() const {
+    return num_attempted == 0
+               ? 0.0
+               : static_cast<double>(num_verified) / num_attempted;
+  }
+};
+
+struct SceneResult {
+  std::string name;
+  std::string kind;  // images | 1dsfm | synthetic
+  std::string label_source;
+  std::string status = "ok";
+  std::string message;
+  size_t num_images = 0;
+  size_t num_labelled_images = 0;
+  size_t num_matchable_pairs = 0;
+  bool has_gt_cameras = false;
+  double extraction_seconds = 0;
+  std::vector<std::string> image_names;  // sorted, for figures
+  std::vector<MethodResult> methods;
+  std::vector<std::string> figures;  // relative to the output folder
+};
+
+struct BenchmarkResults {
+  std::vector<SceneResult> scenes;
+  std::vector<std::string> methods;  // specs, in --methods order
+  std::string command;               // the command line, for the report
+  PairLabelOptions label_options;
+  PoseErrorOptions pose_options;
+};
+
+JsonValue RetrievalMetricsToJson(const RetrievalMetrics& metrics);
+JsonValue SfmMetricsToJson(const SfmMetrics& metrics);
+JsonValue MethodResultToJson(const MethodResult& result);
+JsonValue SceneResultToJson(const SceneResult& result);
+JsonValue BenchmarkResultsToJson(const BenchmarkResults& results);
+
+}  // namespace colmap_gcn

@@ -1,0 +1,117 @@
+#include "exe/gcn_benchmark.h"
+
+#include <iostream>
+
+#include "controllers/gcn_matching.h"
+#include "evaluation/benchmark.h"
+#include "evaluation/report.h"
+#include "exe/gcn_matcher.h"
+#include "util/error.h"
+#include "util/option_manager.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+namespace {
+
+// The pass-through arguments that belong to one COLMAP option group.
+std::vector<std::string> ArgumentsWithPrefix(
+    const std::vector<std::string>& args,
+    const std::vector<std::string>& prefixes) {
+  std::vector<std::string> selected;
+  for (size_t i = 0; i < args.size(); ++i) {
+    bool match = false;
+    for (const auto& prefix : prefixes) {
+      match = match || StringStartsWith(args[i], "--" + prefix);
+    }
+    const bool has_value = args[i].find('=') == std::string::npos &&
+                           i + 1 < args.size() &&
+                           !StringStartsWith(args[i + 1], "--");
+    if (match) {
+      selected.push_back(args[i]);
+      if (has_value) selected.push_back(args[i + 1]);
+    }
+    if (has_value) ++i;
+  }
+  return selected;
+}
+
+}  // namespace
+
+std::unique_ptr<PairGenerator> CreatePairGeneratorFromArguments(
+    const std::vector<std::string>& gcn_matching_args,
+    const Database& database) {
+  GcnMatchingOptions options;
+  OptionManager manager("gcn_benchmark method", "");
+  AddGcnMatchingOptions(&manager, &options);
+  std::vector<std::string> args = {"gcn_benchmark"};
+  args.insert(args.end(), gcn_matching_args.begin(), gcn_matching_args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  manager.Parse(static_cast<int>(argv.size()), argv.data());
+  return CreatePairGenerator(options, database);
+}
+
+int RunGcnBenchmark(int argc, char** argv) {
+  BenchmarkOptions options;
+  OptionManager manager(
+      "gcn_benchmark",
+      "Runs pair-selection methods on scenes (extraction once per scene, "
+      "each method's matching and mapping on a copy) and writes the paper's "
+      "tables to <output_path>/report.md, results.csv, results.json and "
+      "figures/. Cached per scene and method: rerunning resumes.");
+  manager.AddRequiredOption(
+      "datasets",
+      &options.datasets,
+      "comma list of scene folders (images/ + gt/, or 1DSfM list.txt + "
+      "bundle.out) or synth:<family>:<n>[:seed]");
+  manager.AddDefaultOption("methods",
+                           &options.methods,
+                           "comma list: exhaustive, knn:<k>, "
+                           "vocab_tree:<k>, gcn, oracle");
+  manager.AddRequiredOption("output_path", &options.output_path);
+  manager.AddDefaultOption("Benchmark.tau_mo",
+                           &options.labels.min_overlap,
+                           "matchable when overlap >= tau_mo");
+  manager.AddDefaultOption("Benchmark.tau_ct",
+                           &options.labels.min_common_track_ratio,
+                           "... or common-track ratio >= tau_ct");
+  manager.AddDefaultOption("Benchmark.max_rotation_error_deg",
+                           &options.pose.max_rotation_error_deg,
+                           "accurate camera: rotation error below this");
+  manager.AddDefaultOption("Benchmark.max_position_error",
+                           &options.pose.max_position_error,
+                           "... and position error below this fraction of "
+                           "the scene extent");
+  manager.AddDefaultOption("Benchmark.mapper_num_threads",
+                           &options.mapper_num_threads,
+                           "1: repeatable mapper runs; -1: all cores");
+  manager.AddDefaultOption("Benchmark.mapper_min_model_size",
+                           &options.mapper_min_model_size,
+                           "smaller models are discarded by the mapper");
+  manager.AddDefaultOption(
+      "Benchmark.verbose", &options.verbose, "show all of COLMAP's output");
+  manager.AddPassThroughPrefix("ImageReader.");
+  manager.AddPassThroughPrefix("SiftExtraction.");
+  manager.AddPassThroughPrefix("SiftMatching.");
+  manager.AddPassThroughPrefix("Mapper.");
+  if (!manager.Parse(argc, argv)) {
+    return 0;
+  }
+  const auto& args = manager.PassThroughArguments();
+  options.extraction_args =
+      ArgumentsWithPrefix(args, {"ImageReader.", "SiftExtraction."});
+  options.matching_args = ArgumentsWithPrefix(args, {"SiftMatching."});
+  options.mapper_args = ArgumentsWithPrefix(args, {"Mapper."});
+  options.pair_generator_factory = &CreatePairGeneratorFromArguments;
+  std::vector<std::string> command = {"colmap"};
+  for (int i = 0; i < argc; ++i) command.push_back(ShellQuote(argv[i]));
+  options.command = StringJoin(command, " ");
+
+  const BenchmarkResults results = RunBenchmark(options);
+  std::cout << FormatBenchmarkReport(results) << std::flush;
+  std::cerr << "[gcn_benchmark] report: " << options.output_path
+            << "/report.md\n";
+  return 0;
+}
+
+}  // namespace colmap_gcn

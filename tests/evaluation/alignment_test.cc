@@ -1,0 +1,138 @@
+#include "evaluation/alignment.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <Eigen/Geometry>
+
+namespace colmap_gcn {
+namespace {
+
+// A camera at `centre` looking at the origin (world-to-camera pose).
+ModelImage LookAtOrigin(image_t id, const Eigen::Vector3d& centre) {
+  const Eigen::Vector3d z = (-centre).normalized();
+  Eigen::Vector3d x = Eigen::Vector3d::UnitZ().cross(z);
+  if (x.norm() < 1e-9) x = Eigen::Vector3d::UnitX();
+  x.normalize();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Matrix3d rotation;
+  rotation.row(0) = x;
+  rotation.row(1) = y;
+  rotation.row(2) = z;
+  ModelImage image;
+  image.image_id = id;
+  image.camera_id = 1;
+  image.name = "img" + std::to_string(id) + ".jpg";
+  const Eigen::Quaterniond q(rotation);
+  image.qvec << q.w(), q.x(), q.y(), q.z();
+  image.tvec = -rotation * centre;
+  return image;
+}
+
+// n cameras on a ring of radius 5 (with some height variation).
+Reconstruction Ring(int n) {
+  Reconstruction model;
+  model.cameras[1].camera_id = 1;
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2 * M_PI * i / n;
+    const Eigen::Vector3d centre(
+        5 * std::cos(angle), 5 * std::sin(angle), 0.5 * std::sin(3 * angle));
+    model.images[i + 1] = LookAtOrigin(i + 1, centre);
+  }
+  return model;
+}
+
+// Applies x' = s R x + t to a model's cameras.
+Reconstruction Transform(const Reconstruction& model, const Similarity3d& sim) {
+  Reconstruction out = model;
+  for (auto& [id, image] : out.images) {
+    const Eigen::Vector3d centre = sim.Transform(image.ProjectionCenter());
+    const Eigen::Matrix3d rotation =
+        image.RotationMatrix() * sim.rotation.transpose();
+    const Eigen::Quaterniond q(rotation);
+    image.qvec << q.w(), q.x(), q.y(), q.z();
+    image.tvec = -rotation * centre;
+  }
+  return out;
+}
+
+TEST(EstimateSimilarity, RecoversKnownSimilarity) {
+  Similarity3d truth;
+  truth.scale = 2.5;
+  truth.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())
+                       .toRotationMatrix();
+  truth.translation = Eigen::Vector3d(1, -2, 3);
+  std::vector<Eigen::Vector3d> src, dst;
+  for (int i = 0; i < 10; ++i) {
+    src.emplace_back(std::sin(i), std::cos(2 * i), 0.1 * i);
+    dst.push_back(truth.Transform(src.back()));
+  }
+  Similarity3d estimated;
+  ASSERT_TRUE(EstimateSimilarity(src, dst, &estimated));
+  EXPECT_NEAR(estimated.scale, 2.5, 1e-9);
+  EXPECT_LT((estimated.rotation - truth.rotation).norm(), 1e-9);
+  EXPECT_LT((estimated.translation - truth.translation).norm(), 1e-9);
+}
+
+TEST(EstimateSimilarity, DegenerateInputs) {
+  Similarity3d sim;
+  EXPECT_FALSE(
+      EstimateSimilarity({{0, 0, 0}, {1, 0, 0}}, {{0, 0, 0}, {1, 0, 0}}, &sim));
+  // Collinear: rotation about the line undetermined.
+  EXPECT_FALSE(EstimateSimilarity({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}},
+                                  {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}},
+                                  &sim));
+}
+
+TEST(PoseErrors, ExactModelUnderSimilarityHasNoError) {
+  const Reconstruction gt = Ring(12);
+  Similarity3d sim;
+  sim.scale = 0.3;
+  sim.rotation = Eigen::AngleAxisd(2.0, Eigen::Vector3d(0, 1, 1).normalized())
+                     .toRotationMatrix();
+  sim.translation = Eigen::Vector3d(4, 5, 6);
+  Reconstruction model = Transform(gt, sim);
+  model.images.erase(3);  // one image not registered
+  const PoseErrors errors = ComputePoseErrors(model, gt, PoseErrorOptions());
+  ASSERT_TRUE(errors.aligned);
+  EXPECT_EQ(errors.num_gt_images, 12u);
+  EXPECT_EQ(errors.num_evaluated, 11u);
+  EXPECT_NEAR(errors.scene_extent, CameraExtent(gt), 1e-12);
+  EXPECT_LT(errors.median_rotation_error_deg, 1e-6);
+  EXPECT_LT(errors.median_position_error, 1e-9);
+  EXPECT_NEAR(errors.model_to_gt.scale, 1 / 0.3, 1e-9);
+  EXPECT_DOUBLE_EQ(errors.fraction_accurate, 11.0 / 12.0);
+}
+
+TEST(PoseErrors, FoldedModelShowsLargeErrors) {
+  // The back half of the ring registered onto the front half (mirrored
+  // across the x = 0 plane and turned to face the same facade), as repeated
+  // structure folds a model: every image registers, but one similarity
+  // cannot fit both halves.
+  const Reconstruction gt = Ring(16);
+  Reconstruction folded;
+  folded.cameras = gt.cameras;
+  for (const auto& [id, image] : gt.images) {
+    Eigen::Vector3d centre = image.ProjectionCenter();
+    if (centre.x() < 0) centre.x() = -centre.x();
+    folded.images[id] = LookAtOrigin(id, centre);
+    folded.images[id].name = image.name;
+  }
+  const PoseErrors errors = ComputePoseErrors(folded, gt, PoseErrorOptions());
+  ASSERT_TRUE(errors.aligned);
+  EXPECT_EQ(errors.num_evaluated, 16u);
+  EXPECT_GT(errors.median_position_error, 0.1);
+  EXPECT_GT(errors.median_rotation_error_deg, 20.0);
+  EXPECT_LT(errors.fraction_accurate, 0.5);
+}
+
+TEST(RotationAngleDeg, KnownAngle) {
+  const Eigen::Matrix3d a =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d b =
+      Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_NEAR(RotationAngleDeg(a, b), 0.2 * 180 / M_PI, 1e-9);
+}
+
+}  // namespace
+}  // namespace colmap_gcn
