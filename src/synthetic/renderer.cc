@@ -165,15 +165,23 @@ cv::Mat RenderImage(const Scene& scene,
   }
   cv::Mat image(camera.height, camera.width, CV_8UC3);
   SyntheticRandom rng(photometric.noise_seed);
+  const float noise_sigma = static_cast<float>(photometric.noise_sigma);
   for (int y = 0; y < camera.height; ++y) {
     const float* in = radiance.ptr<float>(y);
     uint8_t* out = image.ptr<uint8_t>(y);
     for (int i = 0; i < 3 * camera.width; ++i) {
-      double value = in[i];
+      float value = in[i];
       if (photometric.noise_sigma > 0.0) {
-        value += photometric.noise_sigma * rng.Normal();
+        // Approximately normal: the sum of four uniform 16-bit draws taken
+        // from one 64-bit random number (mean 2, variance 1/3), rescaled.
+        const uint64_t r = rng.Next();
+        const float sum =
+            static_cast<float>((r & 0xFFFF) + ((r >> 16) & 0xFFFF) +
+                               ((r >> 32) & 0xFFFF) + (r >> 48)) *
+            (1.0f / 65536.0f);
+        value += noise_sigma * (sum - 2.0f) * 1.7320508f;
       }
-      out[i] = static_cast<uint8_t>(std::clamp(std::lround(value), 0L, 255L));
+      out[i] = static_cast<uint8_t>(std::clamp(value, 0.0f, 255.0f) + 0.5f);
     }
   }
   return image;

@@ -3,6 +3,7 @@
 // register (nearly) every image at the ground-truth poses, and geometric
 // verification must agree with the ground-truth overlap. Skipped when COLMAP
 // is not installed.
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,7 +59,8 @@ class SyntheticColmapTest : public ::testing::Test {
             " --ImageReader.single_camera 1 --ImageReader.camera_model "
             "PINHOLE --ImageReader.camera_params " +
             params +
-            " --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads 2",
+            " --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads 2"
+            " --SiftExtraction.max_num_features 2048",
         exe + " exhaustive_matcher --database_path " + ShellQuote(db) +
             " --SiftMatching.use_gpu 0 --SiftMatching.num_threads 2",
         exe + " mapper --database_path " + ShellQuote(db) + " --image_path " +
@@ -102,6 +104,10 @@ TEST_F(SyntheticColmapTest, MapperRegistersImagesAtGroundTruthPoses) {
   gt.ReadText(ScenePath("gt"));
   const Reconstruction model = ReadLargestModel(ScenePath("sparse"));
   const PoseAlignmentResult result = AlignToGroundTruth(gt, model);
+  std::cout << "registered " << result.num_registered << "/" << kNumImages
+            << ", median centre error " << result.median_position_error << " ("
+            << 100.0 * result.RelativeMedianError() << "% of scene size "
+            << result.scene_size << ")" << std::endl;
   EXPECT_EQ(result.num_gt_images, kNumImages);
   EXPECT_GE(result.RegisteredFraction(), 0.95)
       << result.num_registered << " of " << kNumImages << " registered";
@@ -124,6 +130,12 @@ TEST_F(SyntheticColmapTest, OverlapAgreesWithGeometricVerification) {
       ReadTwoViewGeometries(ScenePath("database.db"));
   const OverlapAgreement agreement = CompareOverlapWithVerification(
       table, geometries, {DistractorImageName(0), DistractorImageName(1)});
+  std::cout << "overlap>=0.3 verified " << agreement.num_overlap_verified << "/"
+            << agreement.num_overlap_pairs << ", zero-overlap verified "
+            << agreement.num_zero_verified << "/" << agreement.num_zero_pairs
+            << ", distractor pairs verified "
+            << agreement.num_distractor_verified << "/"
+            << agreement.num_distractor_pairs << std::endl;
   ASSERT_GT(agreement.num_overlap_pairs, kNumImages / 2);
   EXPECT_GE(agreement.OverlapVerifiedFraction(), 0.9)
       << agreement.num_overlap_verified << " of " << agreement.num_overlap_pairs
