@@ -25,7 +25,7 @@ for scene in fountain-P11 entry-P10 temple-sparse-ring dino-sparse-ring; do
     echo "benchmark_all: $SHARED/$scene not found, skipped" >&2
   fi
 done
-DATASETS="$DATASETS${DATASETS:+,}synth:ordinary:32:1,synth:repetitive:32:1,synth:symmetric:32:1"
+DATASETS="$DATASETS${DATASETS:+,}synth:ordinary:24:1,synth:repetitive:24:1,synth:symmetric:24:1"
 
 METHODS="exhaustive,knn:5,knn:10,knn:25,knn:50,knn:100"
 METHODS="$METHODS,vocab_tree:5,vocab_tree:10,vocab_tree:25,vocab_tree:50,vocab_tree:100"

@@ -83,6 +83,27 @@ int MinNumInliers(const std::vector<std::string>& args) {
   return PairMatchingOptions().min_num_inliers;
 }
 
+// Identifies a pair set regardless of order and orientation.
+std::string PairSetHash(const std::vector<ImagePair>& pairs) {
+  std::vector<image_pair_t> ids;
+  for (const ImagePair& pair : pairs) {
+    if (pair.first != pair.second) {
+      ids.push_back(ImagePairToPairId(pair.first, pair.second));
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  // FNV-1a over the sorted ids: deterministic across runs and builds.
+  uint64_t hash = 1469598103934665603ull;
+  for (const image_pair_t id : ids) {
+    for (int byte = 0; byte < 8; ++byte) {
+      hash ^= (id >> (8 * byte)) & 0xff;
+      hash *= 1099511628211ull;
+    }
+  }
+  return std::to_string(ids.size()) + "-" + std::to_string(hash);
+}
+
 bool HasOption(const std::vector<std::string>& args, const std::string& name) {
   for (const std::string& arg : args) {
     if (arg == name || StringStartsWith(arg, name + "=")) return true;
@@ -139,6 +160,9 @@ class BenchmarkRunner {
   const BenchmarkOptions& options_;
   const std::string session_;
   const std::vector<BenchmarkMethod> methods_;
+  // Pair-set hash -> spec of the first listed method of the current scene
+  // that matched exactly these pairs.
+  std::map<std::string, std::string> pair_set_owners_;
   std::unique_ptr<ColmapRunner> colmap_;
   std::string colmap_log_;
 };
@@ -374,6 +398,18 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
     return run;
   }
   run["pairing_seconds"] = pairing_timer.ElapsedSeconds();
+  const std::string pairs_hash = PairSetHash(pairs);
+  run["pairs_hash"] = pairs_hash;
+  const auto same = pair_set_owners_.find(pairs_hash);
+  if (same != pair_set_owners_.end()) {
+    // Identical pairs (e.g. knn with k >= N - 1 and exhaustive): matching
+    // and mapping them again would only cost time.
+    run["status"] = "ok";
+    run["same_as"] = same->second;
+    Progress(name, method.spec + ": same pairs as " + same->second);
+    WriteJsonFile(run_path, run);
+    return run;
+  }
 
   const std::string db = JoinPaths(dir, "database.db");
   CopyDatabase(scene.base_db, db);
@@ -571,6 +607,7 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
   LoadGroundTruth(&scene);
   result.has_gt_cameras = scene.has_gt;
   BuildLabels(&scene, &result);
+  pair_set_owners_.clear();
 
   for (size_t m = 0; m < methods_.size(); ++m) {
     const BenchmarkMethod& method = methods_[m];
@@ -592,6 +629,27 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
     }
     if (duplicate) continue;
     JsonValue run = MatchMethod(scene, method);
+    if (run.Has("same_as")) {
+      const std::string owner = run.Get("same_as").AsString();
+      for (size_t earlier = 0; earlier < m; ++earlier) {
+        if (result.methods[earlier].method != owner) continue;
+        MethodResult copy = result.methods[earlier];
+        copy.method = method.spec;
+        copy.k = static_cast<int>(run.GetIntOr("k", 0));
+        copy.pairing_seconds = run.GetDoubleOr("pairing_seconds", 0);
+        copy.message = "same pairs as " + owner;
+        result.methods.push_back(copy);
+        break;
+      }
+      if (result.methods.size() == m + 1) continue;
+      // The owner is not in this run's results: match after all.
+      RemovePath(JoinPaths(MethodDir(scene, method), "run.json"));
+      pair_set_owners_.erase(run.GetStringOr("pairs_hash", ""));
+      run = MatchMethod(scene, method);
+    }
+    if (run.GetStringOr("status", "") == "ok" && run.Has("pairs_hash")) {
+      pair_set_owners_.emplace(run.Get("pairs_hash").AsString(), method.spec);
+    }
     if (run.GetStringOr("status", "") == "ok") {
       run = MapMethod(scene, method);
     }

@@ -1,5 +1,6 @@
 #include "evaluation/alignment.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -121,8 +122,17 @@ TEST(PoseErrors, FoldedModelShowsLargeErrors) {
   const PoseErrors errors = ComputePoseErrors(folded, gt, PoseErrorOptions());
   ASSERT_TRUE(errors.aligned);
   EXPECT_EQ(errors.num_evaluated, 16u);
+  // The folded half faces the wrong way: large rotation errors there, and
+  // the compromise alignment shifts every camera.
   EXPECT_GT(errors.median_position_error, 0.1);
-  EXPECT_GT(errors.median_rotation_error_deg, 20.0);
+  EXPECT_GT(*std::max_element(errors.rotation_errors_deg.begin(),
+                              errors.rotation_errors_deg.end()),
+            90.0);
+  size_t num_large_rotation = 0;
+  for (const double error : errors.rotation_errors_deg) {
+    num_large_rotation += error > 20.0 ? 1 : 0;
+  }
+  EXPECT_GE(num_large_rotation, 4u);
   EXPECT_LT(errors.fraction_accurate, 0.5);
 }
 
