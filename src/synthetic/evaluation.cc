@@ -155,7 +155,8 @@ OverlapAgreement CompareOverlapWithVerification(
     const std::vector<TwoViewGeometryRow>& geometries,
     const std::vector<std::string>& distractor_names,
     double threshold,
-    int min_num_inliers) {
+    int min_num_inliers,
+    double low_threshold) {
   std::set<std::pair<std::string, std::string>> verified;
   for (const TwoViewGeometryRow& row : geometries) {
     if (row.IsVerified(min_num_inliers)) {
@@ -180,6 +181,10 @@ OverlapAgreement CompareOverlapWithVerification(
     } else if (pair.MinOverlap() >= threshold) {
       ++agreement.num_overlap_pairs;
       agreement.num_overlap_verified += is_verified;
+    }
+    if (pair.num_shared > 0 && pair.MinOverlap() < low_threshold) {
+      ++agreement.num_low_pairs;
+      agreement.num_low_verified += is_verified;
     }
   }
   return agreement;

@@ -65,6 +65,9 @@ struct OverlapAgreement {
   // Scene pairs sharing no surface sample.
   int num_zero_pairs = 0;
   int num_zero_verified = 0;
+  // Scene pairs with 0 < min(overlap12, overlap21) < low_threshold.
+  int num_low_pairs = 0;
+  int num_low_verified = 0;
   // Pairs with a distractor image (not counted in the zero pairs above).
   int num_distractor_pairs = 0;
   int num_distractor_verified = 0;
@@ -83,6 +86,7 @@ OverlapAgreement CompareOverlapWithVerification(
     const std::vector<TwoViewGeometryRow>& geometries,
     const std::vector<std::string>& distractor_names,
     double threshold = 0.3,
-    int min_num_inliers = 15);
+    int min_num_inliers = 15,
+    double low_threshold = 0.05);
 
 }  // namespace colmap_gcn

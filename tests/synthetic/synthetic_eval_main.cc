@@ -36,12 +36,15 @@ int main(int argc, char** argv) {
         table, ReadTwoViewGeometries(argv[2]), distractors);
     std::printf(
         "pairs: overlap>=0.3 verified %d/%d (%.1f%%), zero-overlap verified "
-        "%d/%d, distractor pairs verified %d/%d, all verified %d\n",
+        "%d/%d, 0<overlap<0.05 verified %d/%d, distractor pairs verified "
+        "%d/%d, all verified %d\n",
         agreement.num_overlap_verified,
         agreement.num_overlap_pairs,
         100.0 * agreement.OverlapVerifiedFraction(),
         agreement.num_zero_verified,
         agreement.num_zero_pairs,
+        agreement.num_low_verified,
+        agreement.num_low_pairs,
         agreement.num_distractor_verified,
         agreement.num_distractor_pairs,
         agreement.num_verified);
