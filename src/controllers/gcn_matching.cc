@@ -4,7 +4,9 @@
 #include <iostream>
 
 #include "controllers/colmap_runner.h"
+#include "controllers/gcn_model_pairing.h"
 #include "controllers/vocab_tree_pairing.h"
+#include "gcn/model_file.h"
 #include "retrieval/knn_pairing.h"
 #include "util/error.h"
 #include "util/timer.h"
@@ -16,9 +18,43 @@ bool GcnMatchingOptions::Check() const {
       (k <= 0 || (num_threads != -1 && num_threads <= 0))) {
     return false;
   }
-  return pairing == "exhaustive" || pairing == "knn" ||
+  if (pairing == "gcn" &&
+      (min_pairs_per_image < 0 ||
+       (threshold != -1 && (threshold < 0 || threshold > 1)) ||
+       (num_threads != -1 && num_threads <= 0))) {
+    return false;
+  }
+  return pairing == "gcn" || pairing == "exhaustive" || pairing == "knn" ||
          pairing == "vocab_tree" ||
          (pairing == "imported" && !match_list_path.empty());
+}
+
+std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
+    const GcnMatchingOptions& options, const Database& database) {
+  const std::string model_path =
+      options.model_path.empty() ? DefaultGcnModelPath() : options.model_path;
+  if (model_path.empty()) {
+    ThrowError(
+        "no GCN model: pass --GcnMatching.model_path (train one with colmap "
+        "gcn_train) or choose another --GcnMatching.pairing");
+  }
+  const GcnModel model = ReadGcnModel(model_path);
+  GcnPairingOptions pairing = GcnPairingOptionsFromModel(model);
+  if (options.k1 > 0) pairing.k1 = options.k1;
+  if (options.k2 > 0) pairing.k2 = options.k2;
+  if (options.u > 0) pairing.u = options.u;
+  if (options.threshold >= 0) pairing.threshold = options.threshold;
+  pairing.min_pairs_per_image = options.min_pairs_per_image;
+  pairing.num_threads = options.num_threads;
+  std::vector<image_t> image_ids;
+  const EmbeddingMatrix embeddings =
+      ComputeModelEmbeddings(model,
+                             database,
+                             options.descriptor_path,
+                             options.num_threads,
+                             &image_ids);
+  return std::make_unique<GcnPairGenerator>(
+      pairing, image_ids, embeddings, model);
 }
 
 std::unique_ptr<PairGenerator> CreatePairGenerator(
@@ -26,8 +62,11 @@ std::unique_ptr<PairGenerator> CreatePairGenerator(
   if (!options.Check()) {
     ThrowError("invalid --GcnMatching.pairing \"",
                options.pairing,
-               "\" (exhaustive, knn or vocab_tree with k > 0, or imported "
-               "with --GcnMatching.match_list_path)");
+               "\" (gcn, exhaustive, knn or vocab_tree with k > 0, or "
+               "imported with --GcnMatching.match_list_path)");
+  }
+  if (options.pairing == "gcn") {
+    return CreateGcnPairGenerator(options, database);
   }
   if (options.pairing == "knn") {
     KnnPairingOptions knn;

@@ -6,14 +6,30 @@
 
 #include "controllers/pair_matching.h"
 #include "feature/pairing.h"
+#include "gcn/gcn_pair_generator.h"
 #include "scene/database.h"
 
 namespace colmap_gcn {
 
 // How `gcn_matcher` chooses pairs: the options users set as --GcnMatching.*.
 struct GcnMatchingOptions {
-  // Pair generator: exhaustive | imported | knn | vocab_tree.
-  std::string pairing = "exhaustive";
+  // Pair generator: gcn | exhaustive | imported | knn | vocab_tree.
+  std::string pairing = "gcn";
+
+  // GCN model file (`colmap gcn_train`); empty: the default model
+  // (pairing = gcn).
+  std::string model_path = "";
+
+  // Query Enclosing Subgraph sizes and decision threshold (pairing = gcn);
+  // -1 uses the model's recommendation.
+  int k1 = -1;
+  int k2 = -1;
+  int u = -1;
+  double threshold = -1;
+
+  // Every image keeps at least this many GCN pairs, its best-scoring ones,
+  // even when none clears the threshold (pairing = gcn).
+  int min_pairs_per_image = 2;
 
   // Pairs file to import (pairing = imported).
   std::string match_list_path = "";
@@ -26,7 +42,7 @@ struct GcnMatchingOptions {
   std::string embedding_path = "";
 
   // Imported global descriptors, .h5 (hloc) / .npy / .txt, used instead of
-  // VLAD (pairing = knn).
+  // VLAD (pairing = knn, or gcn with a model trained on them).
   std::string descriptor_path = "";
 
   // Vocabulary tree; empty: build one from the database itself
@@ -48,6 +64,11 @@ struct GcnMatchingOptions {
 
   bool Check() const;
 };
+
+// The GCN generator: the model (or the default one), its embedding of the
+// database, and the QES settings (model's recommendation unless set).
+std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
+    const GcnMatchingOptions& options, const Database& database);
 
 // The factory behind --GcnMatching.pairing; throws Error on a bad choice.
 std::unique_ptr<PairGenerator> CreatePairGenerator(

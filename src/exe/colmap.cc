@@ -15,6 +15,7 @@
 #include "exe/gcn_matcher.h"
 #include "exe/gcn_reconstructor.h"
 #include "exe/gcn_synth.h"
+#include "exe/gcn_train.h"
 #include "exe/gcn_vocab_tree_builder.h"
 #include "util/error.h"
 
@@ -27,9 +28,8 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
   std::vector<std::pair<std::string, Command>> commands;
   commands.emplace_back("gcn_matcher", &RunGcnMatcher);
   commands.emplace_back("gcn_reconstructor", &RunGcnReconstructor);
-#ifdef COLMAP_GCN_HAVE_SYNTH
   commands.emplace_back("gcn_synth", &RunGcnSynth);
-#endif
+  commands.emplace_back("gcn_train", &RunGcnTrain);
   commands.emplace_back("gcn_embedding_trainer", &RunGcnEmbeddingTrainer);
   commands.emplace_back("gcn_vocab_tree_builder", &RunGcnVocabTreeBuilder);
   commands.emplace_back("gcn_benchmark", &RunGcnBenchmark);

@@ -9,7 +9,26 @@ void AddGcnMatchingOptions(OptionManager* manager,
                            GcnMatchingOptions* options) {
   manager->AddDefaultOption("GcnMatching.pairing",
                             &options->pairing,
-                            "exhaustive | imported | knn | vocab_tree");
+                            "gcn | exhaustive | imported | knn | vocab_tree");
+  manager->AddDefaultOption(
+      "GcnMatching.model_path",
+      &options->model_path,
+      "GCN model file (pairing=gcn); empty: default model");
+  manager->AddDefaultOption("GcnMatching.k1",
+                            &options->k1,
+                            "1-hop neighbours per query; -1: model's value");
+  manager->AddDefaultOption("GcnMatching.k2",
+                            &options->k2,
+                            "2-hop neighbours per 1-hop node; -1: model's");
+  manager->AddDefaultOption("GcnMatching.u",
+                            &options->u,
+                            "neighbours that make QES edges; -1: model's");
+  manager->AddDefaultOption("GcnMatching.threshold",
+                            &options->threshold,
+                            "GCN score to retrieve a pair; -1: model's (0.5)");
+  manager->AddDefaultOption("GcnMatching.min_pairs_per_image",
+                            &options->min_pairs_per_image,
+                            "best-scoring pairs every image keeps");
   manager->AddDefaultOption("GcnMatching.match_list_path",
                             &options->match_list_path,
                             "pairs file for pairing=imported");

@@ -81,6 +81,12 @@ class VladEmbedding {
   void Write(const std::string& path) const;
   static VladEmbedding Read(const std::string& path);
 
+  // The file's bytes, e.g. to embed the model in a GCN model file;
+  // Deserialize validates them like Read ("source" names them in errors).
+  std::string Serialize() const;
+  static VladEmbedding Deserialize(const std::string& bytes,
+                                   const std::string& source);
+
   // The serialised model without the trailing checksum.
   std::string SerializePayload() const;
 

@@ -45,17 +45,26 @@ std::string VladEmbedding::SerializePayload() const {
   return out;
 }
 
-void VladEmbedding::Write(const std::string& path) const {
+std::string VladEmbedding::Serialize() const {
   std::string contents = SerializePayload();
   Append(&contents, checksum_);
-  WriteFileAtomically(path, contents);
+  return contents;
+}
+
+void VladEmbedding::Write(const std::string& path) const {
+  WriteFileAtomically(path, Serialize());
 }
 
 VladEmbedding VladEmbedding::Read(const std::string& path) {
   if (!ExistsFile(path)) {
     ThrowError("VLAD embedding file ", path, " does not exist");
   }
-  const std::string contents = ReadTextFile(path);
+  return Deserialize(ReadTextFile(path), path);
+}
+
+VladEmbedding VladEmbedding::Deserialize(const std::string& contents,
+                                         const std::string& source) {
+  const std::string& path = source;
   const size_t header_size = sizeof(kMagic) + 4 * sizeof(uint32_t);
   if (contents.size() < sizeof(kMagic) ||
       std::memcmp(contents.data(), kMagic, sizeof(kMagic)) != 0) {

@@ -1,0 +1,151 @@
+#include "exe/gcn_train.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "gcn/model_file.h"
+#include "training/gcn_training.h"
+#include "util/error.h"
+#include "util/option_manager.h"
+#include "util/string.h"
+#include "util/timer.h"
+
+namespace colmap_gcn {
+namespace {
+
+std::vector<std::string> SplitList(const std::string& list) {
+  std::vector<std::string> items;
+  for (const auto& item : StringSplit(list, ",")) {
+    if (!StringTrim(item).empty()) items.push_back(StringTrim(item));
+  }
+  return items;
+}
+
+void PrintHeldOutComparison(const GcnModel& model,
+                            const std::vector<LabelledScene>& scenes,
+                            const GcnTrainingPipelineOptions& options) {
+  const VladEmbedding vlad =
+      VladEmbedding::Deserialize(model.embedding.blob, "the trained model");
+  std::printf("\n%-28s %6s %7s | %-21s | %-21s\n",
+              "held-out scene",
+              "pairs",
+              "labels",
+              "GCN  P     R     F",
+              "kNN  P     R     F");
+  for (const auto& scene : scenes) {
+    const GcnTrainingScene made = MakeTrainingScene(
+        scene, vlad, options.labels, options.training.num_threads);
+    const auto gcn_pairs =
+        GcnRetrievedPairs(model, made, options.training.num_threads);
+    const PairSetScores gcn = ScorePairSet(gcn_pairs, made);
+    const PairSetScores knn =
+        ScorePairSet(MostSimilarPairs(made.embeddings, gcn.num_pairs), made);
+    std::printf("%-28s %6zu %7zu | %5.3f %5.3f %5.3f     | %5.3f %5.3f %5.3f\n",
+                scene.name.c_str(),
+                gcn.num_pairs,
+                gcn.num_positives,
+                gcn.Precision(),
+                gcn.Recall(),
+                gcn.F(),
+                knn.Precision(),
+                knn.Recall(),
+                knn.F());
+  }
+  std::printf("(kNN: the same number of pairs, most similar first)\n");
+}
+
+}  // namespace
+
+int RunGcnTrain(int argc, char** argv) {
+  std::string benchmark_path;
+  std::string output_path;
+  std::string scenes;
+  std::string validation_scenes;
+  std::string test_scenes;
+  GcnTrainingPipelineOptions options;
+  GcnTrainingOptions& training = options.training;
+  OptionManager manager(
+      "gcn_train",
+      "Trains the VLAD embedding and the GCN on labelled scenes prepared by "
+      "`colmap gcn_benchmark` (<benchmark_path>/<scene>/base.db and "
+      "labels/labels.csv) and writes a model file.");
+  manager.AddRequiredOption("benchmark_path",
+                            &benchmark_path,
+                            "gcn_benchmark output folder with the scenes");
+  manager.AddRequiredOption("output_path", &output_path, "model file");
+  manager.AddDefaultOption(
+      "scenes", &scenes, "training scenes (comma list); empty: all others");
+  manager.AddDefaultOption("validation_scenes",
+                           &validation_scenes,
+                           "for early stopping; empty: held-out queries");
+  manager.AddDefaultOption(
+      "test_scenes", &test_scenes, "held out entirely; GCN vs kNN is printed");
+  manager.AddDefaultOption("GcnTraining.tau_mo", &options.labels.min_overlap);
+  manager.AddDefaultOption("GcnTraining.tau_ct",
+                           &options.labels.min_common_track_ratio);
+  manager.AddDefaultOption("GcnTraining.k1", &training.qes.k1);
+  manager.AddDefaultOption("GcnTraining.k2", &training.qes.k2);
+  manager.AddDefaultOption("GcnTraining.u", &training.qes.u);
+  manager.AddDefaultOption("GcnTraining.test_k1", &training.test_qes.k1);
+  manager.AddDefaultOption("GcnTraining.test_k2", &training.test_qes.k2);
+  manager.AddDefaultOption("GcnTraining.test_u", &training.test_qes.u);
+  manager.AddDefaultOption(
+      "GcnTraining.optimizer", &training.optimizer, "sgd | adam");
+  manager.AddDefaultOption("GcnTraining.learning_rate",
+                           &training.learning_rate);
+  manager.AddDefaultOption("GcnTraining.num_epochs", &training.num_epochs);
+  manager.AddDefaultOption("GcnTraining.batch_size", &training.batch_size);
+  manager.AddDefaultOption("GcnTraining.positive_weight",
+                           &training.positive_weight,
+                           "<= 0: balanced");
+  manager.AddDefaultOption("GcnTraining.early_stopping_patience",
+                           &training.early_stopping_patience);
+  manager.AddDefaultOption("GcnTraining.threshold", &training.threshold);
+  manager.AddDefaultOption("GcnTraining.seed", &training.seed);
+  manager.AddDefaultOption("GcnTraining.num_threads", &training.num_threads);
+  manager.AddDefaultOption("Vlad.num_words", &options.vlad.num_words);
+  manager.AddDefaultOption("Vlad.dim", &options.vlad.dim);
+  manager.AddDefaultOption("Vlad.seed", &options.vlad.seed);
+  if (!manager.Parse(argc, argv)) {
+    return 0;
+  }
+  options.vlad.num_threads = training.num_threads;
+
+  const std::vector<std::string> validation_names =
+      SplitList(validation_scenes);
+  const std::vector<std::string> test_names = SplitList(test_scenes);
+  std::vector<LabelledScene> train;
+  for (const auto& scene :
+       FindLabelledScenes(benchmark_path, SplitList(scenes))) {
+    const bool held_out =
+        std::count(
+            validation_names.begin(), validation_names.end(), scene.name) > 0 ||
+        std::count(test_names.begin(), test_names.end(), scene.name) > 0;
+    if (!held_out) train.push_back(scene);
+  }
+  if (train.empty()) {
+    ThrowError(
+        "no training scenes left after holding out validation and "
+        "test scenes");
+  }
+  const std::vector<LabelledScene> validation =
+      validation_names.empty()
+          ? std::vector<LabelledScene>()
+          : FindLabelledScenes(benchmark_path, validation_names);
+
+  const Timer timer;
+  const GcnModel model = TrainGcnModel(train, validation, options);
+  WriteGcnModel(output_path, model);
+  std::printf("wrote %s (%s) in %.1f s\n",
+              output_path.c_str(),
+              model.info.notes.c_str(),
+              timer.ElapsedSeconds());
+  if (!test_names.empty()) {
+    PrintHeldOutComparison(
+        model, FindLabelledScenes(benchmark_path, test_names), options);
+  }
+  return 0;
+}
+
+}  // namespace colmap_gcn

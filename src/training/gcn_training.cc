@@ -1,0 +1,234 @@
+#include "training/gcn_training.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "gcn/gcn_pair_generator.h"
+#include "retrieval/embedding_cache.h"
+#include "scene/database.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+namespace {
+
+uint64_t PairKey(int i, int j) {
+  return (static_cast<uint64_t>(std::min(i, j)) << 32) |
+         static_cast<uint32_t>(std::max(i, j));
+}
+
+}  // namespace
+
+std::vector<LabelledScene> FindLabelledScenes(
+    const std::string& benchmark_path, const std::vector<std::string>& names) {
+  if (!ExistsDir(benchmark_path)) {
+    ThrowError("benchmark folder not found: ", benchmark_path);
+  }
+  auto scene_at = [&](const std::string& name) {
+    LabelledScene scene;
+    scene.name = name;
+    scene.database_path = JoinPaths(JoinPaths(benchmark_path, name), "base.db");
+    scene.labels_path =
+        JoinPaths(JoinPaths(benchmark_path, name), "labels/labels.csv");
+    return scene;
+  };
+  std::vector<LabelledScene> scenes;
+  if (names.empty()) {
+    std::vector<std::string> found;
+    for (const auto& entry :
+         std::filesystem::directory_iterator(benchmark_path)) {
+      found.push_back(entry.path().filename().string());
+    }
+    std::sort(found.begin(), found.end());
+    for (const auto& name : found) {
+      const LabelledScene scene = scene_at(name);
+      if (ExistsFile(scene.database_path) && ExistsFile(scene.labels_path)) {
+        scenes.push_back(scene);
+      }
+    }
+  } else {
+    for (const auto& name : names) {
+      const LabelledScene scene = scene_at(name);
+      if (!ExistsFile(scene.database_path) || !ExistsFile(scene.labels_path)) {
+        ThrowError("scene ",
+                   name,
+                   " in ",
+                   benchmark_path,
+                   " has no base.db and labels/labels.csv; prepare it with "
+                   "colmap gcn_benchmark --methods oracle");
+      }
+      scenes.push_back(scene);
+    }
+  }
+  if (scenes.empty()) {
+    ThrowError("no labelled scenes in ", benchmark_path);
+  }
+  return scenes;
+}
+
+bool GcnTrainingPipelineOptions::Check() const {
+  return vlad.Check() && labels.Check() && training.Check();
+}
+
+GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
+                                   const VladEmbedding& vlad,
+                                   const PairLabelOptions& label_options,
+                                   int num_threads) {
+  const Database database(scene.database_path);
+  const PairLabels labels = PairLabels::Read(scene.labels_path);
+  std::vector<image_t> image_ids;
+  GcnTrainingScene training_scene;
+  training_scene.name = scene.name;
+  training_scene.embeddings = ComputeDatabaseEmbeddings(
+      database, vlad, &image_ids, /*cache_path=*/"", num_threads);
+  std::unordered_map<image_t, int> row_of_id;
+  for (size_t row = 0; row < image_ids.size(); ++row) {
+    row_of_id.emplace(image_ids[row], static_cast<int>(row));
+  }
+  std::unordered_map<std::string, int> row_of_name;
+  for (const auto& image : database.ReadAllImages()) {
+    row_of_name.emplace(image.name, row_of_id.at(image.image_id));
+  }
+  for (const auto& [name1, name2] : labels.MatchablePairs(label_options)) {
+    const auto it1 = row_of_name.find(name1);
+    const auto it2 = row_of_name.find(name2);
+    if (it1 != row_of_name.end() && it2 != row_of_name.end()) {
+      training_scene.positive_pairs.emplace_back(it1->second, it2->second);
+    }
+  }
+  return training_scene;
+}
+
+GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
+                       const std::vector<LabelledScene>& validation_scenes,
+                       const GcnTrainingPipelineOptions& options) {
+  if (!options.Check()) {
+    ThrowError("invalid GCN training options");
+  }
+  std::vector<std::string> database_paths;
+  for (const auto& scene : training_scenes) {
+    database_paths.push_back(scene.database_path);
+  }
+  const auto& log = options.training.log;
+  if (log)
+    log("training the VLAD embedding on " +
+        std::to_string(database_paths.size()) + " databases");
+  const VladEmbedding vlad = TrainVladEmbedding(database_paths, options.vlad);
+
+  auto make_scenes = [&](const std::vector<LabelledScene>& scenes) {
+    std::vector<GcnTrainingScene> made;
+    for (const auto& scene : scenes) {
+      made.push_back(MakeTrainingScene(
+          scene, vlad, options.labels, options.training.num_threads));
+      if (log) {
+        log("scene " + scene.name + ": " +
+            std::to_string(made.back().embeddings.rows()) + " images, " +
+            std::to_string(made.back().positive_pairs.size()) +
+            " matchable pairs");
+      }
+    }
+    return made;
+  };
+  const std::vector<GcnTrainingScene> train = make_scenes(training_scenes);
+  const std::vector<GcnTrainingScene> validation =
+      make_scenes(validation_scenes);
+
+  GcnTrainingOptions training = options.training;
+  training.tau_mo = static_cast<float>(options.labels.min_overlap);
+  training.tau_ct = static_cast<float>(options.labels.min_common_track_ratio);
+  GcnTrainer trainer(training);
+  GcnModel model = trainer.Train(train, validation);
+  model.embedding.type = "vlad";
+  model.embedding.dim = vlad.OutputDim();
+  model.embedding.blob = vlad.Serialize();
+  std::ostringstream notes;
+  notes << "trained on";
+  for (const auto& scene : training_scenes) notes << " " << scene.name;
+  if (!validation_scenes.empty()) {
+    notes << "; validated on";
+    for (const auto& scene : validation_scenes) notes << " " << scene.name;
+  }
+  notes << "; VLAD " << vlad.NumWords() << " words -> " << vlad.OutputDim()
+        << "-D; tau_MO " << options.labels.min_overlap << ", tau_CT "
+        << options.labels.min_common_track_ratio << "; seed " << training.seed;
+  model.info.notes = notes.str();
+  return model;
+}
+
+double PairSetScores::Precision() const {
+  return num_pairs == 0 ? 0.0
+                        : static_cast<double>(num_true_positives) / num_pairs;
+}
+
+double PairSetScores::Recall() const {
+  return num_positives == 0
+             ? 0.0
+             : static_cast<double>(num_true_positives) / num_positives;
+}
+
+double PairSetScores::F() const {
+  const double p = Precision();
+  const double r = Recall();
+  return p + r == 0 ? 0.0 : 2 * p * r / (p + r);
+}
+
+PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
+                           const GcnTrainingScene& scene) {
+  std::unordered_set<uint64_t> positives;
+  for (const auto& [i, j] : scene.positive_pairs) {
+    positives.insert(PairKey(i, j));
+  }
+  std::unordered_set<uint64_t> selected;
+  for (const auto& [i, j] : pairs) {
+    if (i != j) selected.insert(PairKey(i, j));
+  }
+  PairSetScores scores;
+  scores.num_pairs = selected.size();
+  scores.num_positives = positives.size();
+  for (const uint64_t key : selected) {
+    scores.num_true_positives += positives.count(key);
+  }
+  return scores;
+}
+
+std::vector<std::pair<int, int>> MostSimilarPairs(
+    const EmbeddingMatrix& embeddings, size_t num_pairs) {
+  const int n = static_cast<int>(embeddings.rows());
+  const Eigen::MatrixXf similarity = embeddings * embeddings.transpose();
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) pairs.emplace_back(i, j);
+  }
+  num_pairs = std::min(num_pairs, pairs.size());
+  std::partial_sort(pairs.begin(),
+                    pairs.begin() + num_pairs,
+                    pairs.end(),
+                    [&](const auto& a, const auto& b) {
+                      const float sa = similarity(a.first, a.second);
+                      const float sb = similarity(b.first, b.second);
+                      return sa != sb ? sa > sb : a < b;
+                    });
+  pairs.resize(num_pairs);
+  return pairs;
+}
+
+std::vector<std::pair<int, int>> GcnRetrievedPairs(
+    const GcnModel& model, const GcnTrainingScene& scene, int num_threads) {
+  GcnPairingOptions options = GcnPairingOptionsFromModel(model);
+  options.min_pairs_per_image = 0;
+  options.num_threads = num_threads;
+  std::vector<image_t> ids(scene.embeddings.rows());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<image_t>(i + 1);
+  GcnPairGenerator generator(options, ids, scene.embeddings, model);
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& [id1, id2] : generator.AllPairs()) {
+    pairs.emplace_back(static_cast<int>(id1) - 1, static_cast<int>(id2) - 1);
+  }
+  return pairs;
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,77 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "evaluation/labels.h"
+#include "gcn/gcn_model.h"
+#include "gcn/gcn_trainer.h"
+#include "retrieval/vlad.h"
+
+namespace colmap_gcn {
+
+// A scene prepared for training: its COLMAP database (features extracted)
+// and its ground-truth pair labels. `colmap gcn_benchmark` prepares both
+// (<output>/<scene>/base.db and <output>/<scene>/labels/labels.csv).
+struct LabelledScene {
+  std::string name;
+  std::string database_path;
+  std::string labels_path;
+};
+
+// The scenes of a gcn_benchmark output folder; `names` selects some (all
+// with both files when empty). Throws Error naming a missing scene.
+std::vector<LabelledScene> FindLabelledScenes(
+    const std::string& benchmark_path, const std::vector<std::string>& names);
+
+struct GcnTrainingPipelineOptions {
+  // The shared embedding: one VLAD codebook + whitening trained on all
+  // training databases, stored in the model so inference embeds alike.
+  VladOptions vlad;
+
+  // Labels: matchable when overlap >= tau_MO or common tracks >= tau_CT.
+  PairLabelOptions labels;
+
+  // The network and optimiser (GcnTrainer).
+  GcnTrainingOptions training;
+
+  bool Check() const;
+};
+
+// Embeds every scene with `vlad` and turns its labels into row-index pairs.
+GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
+                                   const VladEmbedding& vlad,
+                                   const PairLabelOptions& label_options,
+                                   int num_threads);
+
+// Trains the embedding on the training scenes, then the GCN (validating on
+// validation_scenes, or on a held-out fraction of queries when empty), and
+// returns the model with the embedding, thresholds and notes filled in.
+GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
+                       const std::vector<LabelledScene>& validation_scenes,
+                       const GcnTrainingPipelineOptions& options);
+
+// Retrieval quality of a pair set against a scene's labelled pairs.
+struct PairSetScores {
+  size_t num_pairs = 0;
+  size_t num_true_positives = 0;
+  size_t num_positives = 0;  // matchable pairs in the scene
+  double Precision() const;
+  double Recall() const;
+  double F() const;
+};
+
+PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
+                           const GcnTrainingScene& scene);
+
+// The fixed-k retrieval baseline at an equal number of pairs: the
+// `num_pairs` most similar unordered pairs (ties by index).
+std::vector<std::pair<int, int>> MostSimilarPairs(
+    const EmbeddingMatrix& embeddings, size_t num_pairs);
+
+// The pairs the GCN retrieves for a scene (GcnPairGenerator with the model's
+// recommended settings, threshold only, no min_pairs_per_image fallback).
+std::vector<std::pair<int, int>> GcnRetrievedPairs(
+    const GcnModel& model, const GcnTrainingScene& scene, int num_threads);
+
+}  // namespace colmap_gcn

@@ -1,0 +1,283 @@
+// End to end on a small generated scene: gcn_synth -> feature_extractor ->
+// gcn_matcher -> mapper, against COLMAP's own exhaustive matcher.
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <memory>
+#include <set>
+
+#include "scene/database.h"
+#include "scene/reconstruction.h"
+#include "test_utils.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+namespace {
+
+using test::FrontendExe;
+using test::RealColmapExe;
+using test::RunShell;
+
+const int kNumImages = 16;
+
+std::string BinDir() {
+  return FrontendExe().substr(0, FrontendExe().find_last_of('/'));
+}
+
+// Our front end first on PATH, as users run it.
+int Colmap(const std::string& args,
+           std::string* output = nullptr,
+           const std::string& env = "") {
+  std::string captured;
+  const int code = RunShell(env + " PATH=" + ShellQuote(BinDir()) + ":$PATH " +
+                                ShellQuote(FrontendExe()) + " " + args,
+                            &captured);
+  if (output != nullptr) *output = captured;
+  return code;
+}
+
+std::map<image_pair_t, std::pair<int, size_t>> Geometries(
+    const std::string& database_path) {
+  const Database database(database_path);
+  std::map<image_pair_t, std::pair<int, size_t>> geometries;
+  for (const auto& info : database.ReadTwoViewGeometryInfos()) {
+    geometries[info.pair_id] = {info.config, info.num_inliers};
+  }
+  return geometries;
+}
+
+std::set<image_pair_t> VerifiedPairs(const std::string& database_path) {
+  std::set<image_pair_t> verified;
+  for (const auto& [pair_id, geometry] : Geometries(database_path)) {
+    if (IsVerifiedTwoViewGeometry(geometry.first, geometry.second, 15)) {
+      verified.insert(pair_id);
+    }
+  }
+  return verified;
+}
+
+class GcnMatcherEndToEnd : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (RealColmapExe().empty()) return;
+    dir_ = new TemporaryDirectory("colmap_gcn_e2e");
+    std::string output;
+    ASSERT_EQ(Colmap("gcn_synth --output_path " + ScenePath() +
+                         " --GcnSynth.family ordinary --GcnSynth.num_images " +
+                         std::to_string(kNumImages) +
+                         " --GcnSynth.seed 7"
+                         // COLMAP's focal guess for images without EXIF.
+                         " --GcnSynth.focal_length_factor 1.2",
+                     &output),
+              0)
+        << output;
+    ASSERT_EQ(Colmap("feature_extractor --database_path " + BasePath() +
+                         " --image_path " + ScenePath() + "/images" +
+                         " --ImageReader.single_camera 1"
+                         " --SiftExtraction.max_num_features 2048"
+                         " --SiftExtraction.use_gpu 0",
+                     &output),
+              0)
+        << output;
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  void SetUp() override {
+    if (RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
+    ASSERT_NE(dir_, nullptr);
+  }
+
+  static std::string ScenePath() { return JoinPaths(dir_->Path(), "scene"); }
+  static std::string BasePath() { return JoinPaths(dir_->Path(), "base.db"); }
+  // A fresh copy of the extracted database for one test.
+  static std::string CopyOfBase(const std::string& name) {
+    const std::string path = JoinPaths(dir_->Path(), name);
+    EXPECT_EQ(RunShell("cp " + BasePath() + " " + path), 0);
+    return path;
+  }
+
+  static TemporaryDirectory* dir_;
+};
+
+TemporaryDirectory* GcnMatcherEndToEnd::dir_ = nullptr;
+
+TEST_F(GcnMatcherEndToEnd, ExhaustivePairingEqualsColmapExhaustiveMatcher) {
+  const std::string colmap_db = CopyOfBase("colmap_exhaustive.db");
+  const std::string ours_db = CopyOfBase("gcn_exhaustive.db");
+  std::string output;
+  // One matching thread on both sides: COLMAP's RANSAC draws from
+  // per-thread generators, so with several threads even the configuration
+  // of a pair can differ between two runs of COLMAP itself.
+  ASSERT_EQ(Colmap("exhaustive_matcher --database_path " + colmap_db +
+                       " --SiftMatching.use_gpu 0 --SiftMatching.num_threads 1",
+                   &output),
+            0)
+      << output;
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + ours_db +
+                       " --GcnMatching.pairing exhaustive"
+                       " --SiftMatching.num_threads 1",
+                   &output),
+            0)
+      << output;
+  // The summary row: every pair attempted.
+  EXPECT_NE(output.find("exhaustive"), std::string::npos) << output;
+
+  const auto colmap_geometries = Geometries(colmap_db);
+  const auto our_geometries = Geometries(ours_db);
+  EXPECT_EQ(colmap_geometries.size(),
+            static_cast<size_t>(kNumImages * (kNumImages - 1) / 2));
+  EXPECT_EQ(our_geometries.size(), colmap_geometries.size());
+  const std::set<image_pair_t> colmap_verified = VerifiedPairs(colmap_db);
+  EXPECT_GE(colmap_verified.size(), static_cast<size_t>(kNumImages));
+  EXPECT_EQ(VerifiedPairs(ours_db), colmap_verified);
+  for (const auto& [pair_id, geometry] : colmap_geometries) {
+    ASSERT_EQ(our_geometries.count(pair_id), 1u);
+    // Same configuration; inlier counts differ by a few because RANSAC
+    // sees the pairs in another order (as between two COLMAP runs).
+    const auto& ours = our_geometries.at(pair_id);
+    EXPECT_EQ(ours.first, geometry.first) << pair_id;
+    EXPECT_NEAR(static_cast<double>(ours.second),
+                static_cast<double>(geometry.second),
+                3 + 0.1 * geometry.second)
+        << pair_id;
+  }
+
+  // ... and the mapper registers every image from our matches.
+  const std::string sparse = JoinPaths(dir_->Path(), "sparse");
+  CreateDirIfNotExists(sparse);
+  ASSERT_EQ(Colmap("mapper --database_path " + ours_db + " --image_path " +
+                       ScenePath() + "/images --output_path " + sparse +
+                       " --Mapper.num_threads 1",
+                   &output),
+            0)
+      << output;
+  Reconstruction reconstruction;
+  reconstruction.Read(JoinPaths(sparse, "0"));
+  EXPECT_EQ(reconstruction.images.size(), static_cast<size_t>(kNumImages));
+  EXPECT_FALSE(ExistsDir(JoinPaths(sparse, "1")));
+
+  // A second run finds everything matched and leaves the database as is.
+  const std::string before = ReadTextFile(ours_db);
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + ours_db +
+                       " --GcnMatching.pairing exhaustive",
+                   &output),
+            0)
+      << output;
+  EXPECT_NE(output.find("already matched"), std::string::npos) << output;
+  EXPECT_EQ(ReadTextFile(ours_db), before);
+}
+
+TEST_F(GcnMatcherEndToEnd, ImportedPairingMatchesExactlyThosePairs) {
+  const std::string database_path = CopyOfBase("imported.db");
+  std::vector<DatabaseImage> images = Database(database_path).ReadAllImages();
+  ASSERT_EQ(images.size(), static_cast<size_t>(kNumImages));
+  const std::string pairs_path = JoinPaths(dir_->Path(), "imported_pairs.txt");
+  // Consecutive views overlap in the orbit; one reversed duplicate.
+  WriteFileAtomically(pairs_path,
+                      images[0].name + " " + images[1].name + "\n" +
+                          images[1].name + " " + images[2].name + "\n" +
+                          images[1].name + " " + images[0].name + "\n");
+  std::string output;
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.pairing imported"
+                       " --GcnMatching.match_list_path " +
+                       pairs_path,
+                   &output),
+            0)
+      << output;
+  const auto geometries = Geometries(database_path);
+  EXPECT_EQ(geometries.size(), 2u);
+  EXPECT_EQ(geometries.count(
+                ImagePairToPairId(images[0].image_id, images[1].image_id)),
+            1u);
+  EXPECT_EQ(geometries.count(
+                ImagePairToPairId(images[1].image_id, images[2].image_id)),
+            1u);
+
+  // Unknown names: one-line error naming them, database untouched.
+  WriteFileAtomically(pairs_path, images[0].name + " ghost.jpg\n");
+  const std::string before = ReadTextFile(database_path);
+  EXPECT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.pairing imported"
+                       " --GcnMatching.match_list_path " +
+                       pairs_path,
+                   &output),
+            1);
+  EXPECT_NE(output.find("ghost.jpg"), std::string::npos) << output;
+  EXPECT_EQ(StringSplit(StringTrim(output), "\n").size(), 1u) << output;
+  EXPECT_EQ(ReadTextFile(database_path), before);
+}
+
+TEST_F(GcnMatcherEndToEnd, CrashingColmapLeavesDatabaseUntouchedAndResumes) {
+  const std::string database_path = CopyOfBase("crash.db");
+  // A COLMAP that aborts in matching, like a killed or crashing run.
+  const std::string fake = JoinPaths(dir_->Path(), "crashing_colmap");
+  WriteFileAtomically(fake,
+                      "#!/bin/sh\n"
+                      "if [ \"$1\" = matches_importer ]; then\n"
+                      "  echo 'F1122 matching exploded'; kill -ABRT $$\n"
+                      "fi\n"
+                      "exec " +
+                          RealColmapExe() + " \"$@\"\n");
+  ASSERT_EQ(RunShell("chmod +x " + fake), 0);
+  const std::string before = ReadTextFile(database_path);
+  std::string output;
+  EXPECT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.pairing exhaustive",
+                   &output,
+                   "COLMAP_EXE=" + fake),
+            1);
+  EXPECT_EQ(StringSplit(StringTrim(output), "\n").back().rfind("ERROR: ", 0),
+            0u)
+      << output;
+  EXPECT_NE(output.find("crashed"), std::string::npos) << output;
+  EXPECT_NE(output.find("matching exploded"), std::string::npos) << output;
+  EXPECT_EQ(ReadTextFile(database_path), before);
+  EXPECT_TRUE(ExistsFile(database_path + ".gcn-partial"));
+
+  // With a working COLMAP the run completes and the partial copy goes away.
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.pairing exhaustive",
+                   &output),
+            0)
+      << output;
+  EXPECT_FALSE(ExistsFile(database_path + ".gcn-partial"));
+  EXPECT_EQ(Geometries(database_path).size(),
+            static_cast<size_t>(kNumImages * (kNumImages - 1) / 2));
+}
+
+TEST_F(GcnMatcherEndToEnd, MissingColmapLeavesDatabaseUntouched) {
+  const std::string database_path = CopyOfBase("no_colmap.db");
+  const std::string before = ReadTextFile(database_path);
+  std::string output;
+  EXPECT_EQ(
+      RunShell("env -u COLMAP_EXE PATH=" + ShellQuote(BinDir()) + " " +
+                   ShellQuote(FrontendExe()) + " gcn_matcher --database_path " +
+                   database_path + " --GcnMatching.pairing exhaustive",
+               &output),
+      1);
+  EXPECT_NE(output.find("COLMAP not found"), std::string::npos) << output;
+  EXPECT_EQ(ReadTextFile(database_path), before);
+  EXPECT_FALSE(ExistsFile(database_path + ".gcn-partial"));
+}
+
+TEST_F(GcnMatcherEndToEnd, EmptyDatabaseIsAnError) {
+  const std::string database_path = JoinPaths(dir_->Path(), "empty.db");
+  std::string output;
+  ASSERT_EQ(
+      Colmap("database_creator --database_path " + database_path, &output), 0)
+      << output;
+  EXPECT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.pairing exhaustive",
+                   &output),
+            1);
+  EXPECT_NE(output.find("0 image(s)"), std::string::npos) << output;
+  EXPECT_EQ(StringSplit(StringTrim(output), "\n").size(), 1u) << output;
+}
+
+}  // namespace
+}  // namespace colmap_gcn
