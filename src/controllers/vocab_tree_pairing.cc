@@ -27,7 +27,7 @@ bool VocabTreeBuildOptions::Check() const {
 
 int AutoNumVisualWords(size_t num_descriptors) {
   size_t words = 64;
-  while (words * 2 <= num_descriptors / 20 && words < 65536) words *= 2;
+  while (words * 2 <= num_descriptors / 50 && words < 16384) words *= 2;
   return static_cast<int>(std::min(words, num_descriptors));
 }
 
@@ -51,6 +51,28 @@ std::string SqlQuote(const std::string& str) {
   return quoted + "'";
 }
 
+// A consistent copy of a database (WAL content included) that COLMAP can
+// open read-write without touching the user's file: COLMAP opens databases
+// read-write even to read them, and its WAL files beside a database that
+// gcn_matcher later replaces atomically would corrupt it.
+void SnapshotDatabase(const std::string& path, const std::string& copy_path) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) !=
+      SQLITE_OK) {
+    sqlite3_close(db);
+    ThrowError("cannot open ", path);
+  }
+  char* message = nullptr;
+  const std::string sql = "VACUUM INTO " + SqlQuote(copy_path) + ";";
+  const int code = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &message);
+  const std::string why = message != nullptr ? message : "";
+  sqlite3_free(message);
+  sqlite3_close(db);
+  if (code != SQLITE_OK) {
+    ThrowError("cannot copy ", path, " to ", copy_path, ": ", why);
+  }
+}
+
 // One database holding all images and descriptors of the inputs.
 void MergeDatabases(const std::vector<std::string>& database_paths,
                     const std::string& merged_path) {
@@ -63,9 +85,7 @@ void MergeDatabases(const std::vector<std::string>& database_paths,
                  "vocab_tree_builder");
     }
   }
-  std::filesystem::copy_file(database_paths[0],
-                             merged_path,
-                             std::filesystem::copy_options::overwrite_existing);
+  SnapshotDatabase(database_paths[0], merged_path);
   sqlite3* db = nullptr;
   if (sqlite3_open_v2(
           merged_path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) !=
@@ -120,10 +140,11 @@ void BuildVocabTree(const ColmapRunner& colmap,
         "branching > 1)");
   }
   TemporaryDirectory temp("colmap_gcn_vocab_tree");
-  std::string database_path = database_paths[0];
+  const std::string database_path = JoinPaths(temp.Path(), "merged.db");
   if (database_paths.size() > 1) {
-    database_path = JoinPaths(temp.Path(), "merged.db");
     MergeDatabases(database_paths, database_path);
+  } else {
+    SnapshotDatabase(database_paths[0], database_path);
   }
   size_t num_descriptors = 0;
   {
@@ -248,9 +269,14 @@ VocabTreePairGenerator::VocabTreePairGenerator(
   const std::vector<DatabaseImage> images = database.ReadAllImages();
   const int k = std::min<int>(options_.k, static_cast<int>(images.size()) - 1);
   if (k <= 0) return;
+  // COLMAP opens databases read-write even to read; it works on a snapshot
+  // so that no WAL file of its appears beside the user's database.
+  TemporaryDirectory temp("colmap_gcn_vocab_tree");
+  const std::string snapshot = JoinPaths(temp.Path(), "database.db");
+  SnapshotDatabase(database.Path(), snapshot);
   const std::string output = colmap.Run("vocab_tree_retriever",
                                         {"--database_path",
-                                         database.Path(),
+                                         snapshot,
                                          "--vocab_tree_path",
                                          tree_path,
                                          "--num_images",

@@ -28,7 +28,7 @@ int RunGcnVocabTreeBuilder(int argc, char** argv) {
   manager.AddRequiredOption("output_path", &output_path, "tree file");
   manager.AddDefaultOption("num_visual_words",
                            &options.num_visual_words,
-                           "0: about one per 20 descriptors, power of 2");
+                           "0: about one per 50 descriptors, power of 2");
   manager.AddDefaultOption("branching", &options.branching);
   manager.AddDefaultOption("num_iterations", &options.num_iterations);
   manager.AddDefaultOption("colmap_log_path",

@@ -58,8 +58,9 @@ TEST(ParseVocabTreeRetrieval, UnknownImagesAreErrors) {
 TEST(AutoNumVisualWords, PowerOfTwoBoundedByDescriptors) {
   EXPECT_EQ(AutoNumVisualWords(10), 10);
   EXPECT_EQ(AutoNumVisualWords(1000), 64);
-  EXPECT_EQ(AutoNumVisualWords(23852), 1024);
-  EXPECT_EQ(AutoNumVisualWords(100000000), 65536);
+  EXPECT_EQ(AutoNumVisualWords(23852), 256);
+  EXPECT_EQ(AutoNumVisualWords(110000), 2048);
+  EXPECT_EQ(AutoNumVisualWords(100000000), 16384);
 }
 
 }  // namespace

@@ -22,6 +22,10 @@ using test::RunShell;
 using test::SharedDatasetsDir;
 
 const size_t kNumImages = 16;
+// COLMAP 3.8's mapper registers 13 of the 16 images of this sparse ring even
+// from exhaustive matches (measured, see docs/retrieval.md), so the
+// retrieval-based runs must reach 12.
+const size_t kMinRegistered = 12;
 
 int Colmap(const std::string& args, std::string* output) {
   const std::string bin = FrontendExe().substr(0, FrontendExe().rfind('/'));
@@ -105,7 +109,7 @@ TEST_F(RetrievalEndToEnd, KnnPairingRegistersTheImages) {
   // Top-10 of 16 images, deduplicated: fewer than all 120 pairs.
   EXPECT_GE(num_pairs, kNumImages * 10 / 2);
   EXPECT_LT(num_pairs, kNumImages * (kNumImages - 1) / 2);
-  EXPECT_GE(num_registered, kNumImages - 1);
+  EXPECT_GE(num_registered, kMinRegistered);
   // The self-trained model and the embedding cache sit beside the database.
   EXPECT_TRUE(ExistsFile(JoinPaths(dir_->Path(), "knn.db.gcn-vlad.bin")));
   EXPECT_TRUE(ExistsFile(JoinPaths(dir_->Path(), "knn.db.gcn-embedding.bin")));
@@ -119,7 +123,7 @@ TEST_F(RetrievalEndToEnd, VocabTreePairingRegistersTheImages) {
               &num_registered);
   EXPECT_GE(num_pairs, kNumImages * 10 / 2);
   EXPECT_LT(num_pairs, kNumImages * (kNumImages - 1) / 2);
-  EXPECT_GE(num_registered, kNumImages - 1);
+  EXPECT_GE(num_registered, kMinRegistered);
   EXPECT_TRUE(
       ExistsFile(JoinPaths(dir_->Path(), "vocab_tree.db.gcn-vocab-tree.bin")));
 }
