@@ -28,7 +28,7 @@ struct VladOptions {
   // the target database itself must not (see PcaOptions), so
   // self-training uses self_training_shrinkage.
   double shrinkage = 0.1;
-  double self_training_shrinkage = 1.0;
+  double self_training_shrinkage = 3.0;
 
   // k-means runs on at most this many descriptors, a deterministic strided
   // subsample over all images.

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <set>
 
 #include "scene/database.h"
@@ -93,6 +94,9 @@ class RetrievalEndToEnd : public testing::Test {
       reconstruction.Read(JoinPaths(sparse, std::to_string(i)));
       *num_registered = std::max(*num_registered, reconstruction.images.size());
     }
+    std::cout << name << ": " << *num_pairs << " pairs matched, "
+              << *num_registered << " of " << kNumImages
+              << " images registered\n";
   }
 
   static TemporaryDirectory* dir_;
