@@ -15,5 +15,10 @@ if [ ! -d "$scene/images" ]; then
   colmap gcn_synth --output_path "$scene" --GcnSynth.family ordinary \
     --GcnSynth.num_images 24 --GcnSynth.seed 1
 fi
+# The rendered images carry no EXIF: pass the known pinhole intrinsics, as
+# for a calibrated camera (cameras.txt: ID MODEL WIDTH HEIGHT fx fy cx cy).
+params=$(awk '!/^#/ && NF >= 8 {print $5","$6","$7","$8; exit}' "$scene/gt/cameras.txt")
 colmap gcn_reconstructor --image_path "$scene/images" --workspace_path "$work" \
-  --ImageReader.single_camera 1 --Mapper.num_threads 1 "$@"
+  --ImageReader.single_camera 1 --ImageReader.camera_model PINHOLE \
+  --ImageReader.camera_params "$params" \
+  --SiftExtraction.max_num_features 2048 --Mapper.num_threads 1 "$@"

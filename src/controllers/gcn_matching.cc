@@ -104,6 +104,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   report.pairing = options.pairing;
   const Timer pairing_timer;
   std::vector<ImagePair> pairs;
+  std::vector<float> scores;
   {
     const Database database(database_path);
     report.num_images = database.NumImages();
@@ -113,7 +114,16 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
                  report.num_images,
                  " image(s); run colmap feature_extractor first");
     }
-    pairs = CreatePairGenerator(options, database)->AllPairs();
+    const std::unique_ptr<PairGenerator> generator =
+        CreatePairGenerator(options, database);
+    pairs = generator->AllPairs();
+    // The GCN's scores go into the pairs file for users to inspect.
+    if (const auto* gcn =
+            dynamic_cast<const GcnPairGenerator*>(generator.get())) {
+      for (const ScoredImagePair& pair : gcn->ScoredPairs()) {
+        scores.push_back(pair.score);
+      }
+    }
   }
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
 
@@ -127,6 +137,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   PairMatchingOptions matching_options;
   matching_options.pairs_path = options.pairs_path;
   matching_options.colmap_args = colmap_args;
+  matching_options.scores = scores;
   std::cerr << "gcn_matcher: " << pairs.size() << " pairs from "
             << options.pairing << " pairing of " << report.num_images
             << " images; matching with COLMAP " << colmap.Version() << "\n";

@@ -89,6 +89,13 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   if (!options.Check()) {
     ThrowError("invalid matching options: min_num_inliers must be >= 0");
   }
+  if (!options.scores.empty() && options.scores.size() != pairs.size()) {
+    ThrowError("matching options: ",
+               options.scores.size(),
+               " scores for ",
+               pairs.size(),
+               " pairs");
+  }
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
@@ -97,6 +104,7 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
 
   std::vector<DatabaseImage> images;
   std::unordered_set<image_pair_t> pair_ids;
+  std::unordered_map<image_pair_t, float> scores;
   std::vector<ImagePair> unmatched_pairs;
   {
     const Database database(database_path);
@@ -110,9 +118,14 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
     }
     images = database.ReadAllImages();
     const auto geometries = GeometriesById(database);
-    for (const auto& pair : pairs) {
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      const ImagePair& pair = pairs[i];
       if (pair.first == pair.second) continue;
       const image_pair_t pair_id = ImagePairToPairId(pair.first, pair.second);
+      if (!options.scores.empty()) {
+        float& score = scores[pair_id];
+        score = std::max(score, options.scores[i]);
+      }
       if (!pair_ids.insert(pair_id).second) continue;
       if (geometries.count(pair_id) > 0) {
         ++summary.num_already_matched;
@@ -129,7 +142,13 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
     all_pairs.push_back(PairIdToImagePair(pair_id));
   }
   std::sort(all_pairs.begin(), all_pairs.end());
-  WritePairsFile(summary.pairs_path, all_pairs, images);
+  std::vector<float> all_scores;
+  if (!options.scores.empty()) {
+    for (const auto& [id1, id2] : all_pairs) {
+      all_scores.push_back(scores.at(ImagePairToPairId(id1, id2)));
+    }
+  }
+  WritePairsFile(summary.pairs_path, all_pairs, images, all_scores);
 
   if (!unmatched_pairs.empty()) {
     const std::string work_path = database_path + ".gcn-partial";

@@ -17,6 +17,10 @@ struct PairMatchingOptions {
   // --SiftMatching.min_num_inliers when that is among colmap_args.
   int min_num_inliers = 15;
 
+  // Optional scores parallel to the pairs (e.g. the GCN's), written as the
+  // pairs file's third column, which COLMAP ignores.
+  std::vector<float> scores;
+
   // Forwarded verbatim to `colmap matches_importer` (the user's
   // --SiftMatching.* options).
   std::vector<std::string> colmap_args;

@@ -96,6 +96,10 @@ int RunGcnTrain(int argc, char** argv) {
                            &training.learning_rate);
   manager.AddDefaultOption("GcnTraining.num_epochs", &training.num_epochs);
   manager.AddDefaultOption("GcnTraining.batch_size", &training.batch_size);
+  std::string lr_decay_epochs = "2,3";
+  manager.AddDefaultOption("GcnTraining.lr_decay_epochs",
+                           &lr_decay_epochs,
+                           "epochs (0-based) where the rate drops x0.1");
   manager.AddDefaultOption("GcnTraining.positive_weight",
                            &training.positive_weight,
                            "<= 0: balanced");
@@ -111,6 +115,10 @@ int RunGcnTrain(int argc, char** argv) {
     return 0;
   }
   options.vlad.num_threads = training.num_threads;
+  training.lr_decay_epochs.clear();
+  for (const auto& epoch : SplitList(lr_decay_epochs)) {
+    training.lr_decay_epochs.push_back(std::stoi(epoch));
+  }
 
   const std::vector<std::string> validation_names =
       SplitList(validation_scenes);

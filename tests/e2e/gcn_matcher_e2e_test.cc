@@ -7,6 +7,10 @@
 #include <memory>
 #include <set>
 
+#include "feature/pairs_io.h"
+#include "gcn/gcn_model.h"
+#include "gcn/model_file.h"
+#include "retrieval/vlad.h"
 #include "scene/database.h"
 #include "scene/reconstruction.h"
 #include "test_utils.h"
@@ -66,16 +70,24 @@ class GcnMatcherEndToEnd : public testing::Test {
     std::string output;
     ASSERT_EQ(Colmap("gcn_synth --output_path " + ScenePath() +
                          " --GcnSynth.family ordinary --GcnSynth.num_images " +
-                         std::to_string(kNumImages) +
-                         " --GcnSynth.seed 7"
-                         // COLMAP's focal guess for images without EXIF.
-                         " --GcnSynth.focal_length_factor 1.2",
+                         std::to_string(kNumImages) + " --GcnSynth.seed 7",
                      &output),
               0)
         << output;
+    // The generator's intrinsics, as a user with a calibrated camera would
+    // pass them: the mapper then registers every view of the orbit.
+    Reconstruction gt;
+    gt.ReadText(ScenePath() + "/gt");
+    std::vector<std::string> params;
+    for (const double param : gt.cameras.begin()->second.params) {
+      params.push_back(std::to_string(param));
+    }
     ASSERT_EQ(Colmap("feature_extractor --database_path " + BasePath() +
                          " --image_path " + ScenePath() + "/images" +
                          " --ImageReader.single_camera 1"
+                         " --ImageReader.camera_model PINHOLE"
+                         " --ImageReader.camera_params " +
+                         StringJoin(params, ",") +
                          " --SiftExtraction.max_num_features 2048"
                          " --SiftExtraction.use_gpu 0",
                      &output),
@@ -248,6 +260,75 @@ TEST_F(GcnMatcherEndToEnd, CrashingColmapLeavesDatabaseUntouchedAndResumes) {
   EXPECT_FALSE(ExistsFile(database_path + ".gcn-partial"));
   EXPECT_EQ(Geometries(database_path).size(),
             static_cast<size_t>(kNumImages * (kNumImages - 1) / 2));
+}
+
+// The gcn path through the real plumbing: a model file whose embedding is a
+// VLAD trained on this scene and whose (untrained) network scores pairs;
+// what is checked is the path, not the model's quality.
+TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
+  const std::string database_path = CopyOfBase("gcn.db");
+  VladOptions vlad_options;
+  vlad_options.num_words = 16;
+  vlad_options.dim = 8;
+  const VladEmbedding vlad = TrainVladEmbedding({database_path}, vlad_options);
+  GcnShape shape;
+  shape.input_dim = vlad.OutputDim();
+  shape.gcn_dims = {16, 16, 8, 8};
+  shape.fc_dim = 8;
+  GcnModel model = InitializeGcnModel(shape, GcnAggregation::kSymmetric, 3);
+  model.embedding = {"vlad", vlad.OutputDim(), vlad.Serialize()};
+  const std::string model_path = JoinPaths(dir_->Path(), "test.gcnmodel");
+  WriteGcnModel(model_path, model);
+
+  const std::string pairs_path = JoinPaths(dir_->Path(), "gcn_pairs.txt");
+  std::string output;
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.model_path " + model_path +
+                       " --GcnMatching.k1 6 --GcnMatching.k2 3"
+                       " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
+                       " --GcnMatching.pairs_path " +
+                       pairs_path,
+                   &output),
+            0)
+      << output;
+  const auto pairs = ReadPairsFile(pairs_path);
+  // At most k1 candidates per image, and every image keeps its best three.
+  EXPECT_LE(pairs.size(), static_cast<size_t>(kNumImages * 6));
+  std::map<std::string, int> degree;
+  for (const auto& [name1, name2] : pairs) {
+    EXPECT_NE(name1, name2);
+    ++degree[name1];
+    ++degree[name2];
+  }
+  EXPECT_EQ(degree.size(), static_cast<size_t>(kNumImages));
+  for (const auto& [name, count] : degree) {
+    EXPECT_GE(count, 3) << name;
+  }
+  EXPECT_EQ(Geometries(database_path).size(), pairs.size());
+
+  // Same input, other thread count: the same pairs.
+  const std::string pairs_path2 = JoinPaths(dir_->Path(), "gcn_pairs2.txt");
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.model_path " + model_path +
+                       " --GcnMatching.k1 6 --GcnMatching.k2 3"
+                       " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
+                       " --GcnMatching.num_threads 1"
+                       " --GcnMatching.pairs_path " +
+                       pairs_path2,
+                   &output),
+            0)
+      << output;
+  EXPECT_EQ(ReadPairsFile(pairs_path2), pairs);
+
+  // A model file that is not one: one-line error, database untouched.
+  const std::string before = ReadTextFile(database_path);
+  WriteFileAtomically(model_path, "not a model");
+  EXPECT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.model_path " + model_path,
+                   &output),
+            1);
+  EXPECT_EQ(StringSplit(StringTrim(output), "\n").size(), 1u) << output;
+  EXPECT_EQ(ReadTextFile(database_path), before);
 }
 
 TEST_F(GcnMatcherEndToEnd, MissingColmapLeavesDatabaseUntouched) {
