@@ -16,8 +16,8 @@
 #include "evaluation/common_tracks.h"
 #include "evaluation/dataset.h"
 #include "evaluation/figures.h"
-#include "evaluation/ground_truth.h"
 #include "evaluation/method.h"
+#include "evaluation/pair_labels.h"
 #include "evaluation/report.h"
 #include "feature/pairs_io.h"
 #include "scene/reconstruction_stats.h"
@@ -284,17 +284,13 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
         Progress(name,
                  "triangulating the exhaustive matches on the GT "
                  "cameras (point_triangulator)");
-        const Reconstruction triangulated = TriangulateOnGroundTruth(
+        // The retrieval module's GT-camera labels (the same labels its
+        // retrieval-quality tools use).
+        scene->labels = ComputeGroundTruthCameraLabels(
             Colmap(*scene),
-            scene->gt,
             JoinPaths(MethodDir(*scene, exhaustive), "database.db"),
+            scene->dataset.gt_path,
             JoinPaths(labels_dir, "gt_triangulation"));
-        std::vector<std::string> names;
-        for (const auto& [id, image] : scene->gt.images) {
-          names.push_back(image.name);
-        }
-        scene->labels =
-            LabelsFromReconstruction(triangulated, names, "GT cameras");
         break;
       }
       case LabelSource::kReferenceModel: {
@@ -348,8 +344,13 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
 
 std::unique_ptr<PairGenerator> BenchmarkRunner::CreateGenerator(
     const SceneContext& scene, const BenchmarkMethod& method) const {
-  const std::vector<std::string> args = GcnMatchingArguments(
+  std::vector<std::string> args = GcnMatchingArguments(
       method, scene.images.size(), scene.oracle_pairs_path);
+  if (!method.IsOracle()) {
+    args.insert(args.end(),
+                options_.gcn_matching_args.begin(),
+                options_.gcn_matching_args.end());
+  }
   const Database database(scene.base_db);
   return options_.pair_generator_factory
              ? options_.pair_generator_factory(args, database)
@@ -395,6 +396,7 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
     Progress(name, method.spec + ": unavailable (" + error.what() + ")");
     run["status"] = "unavailable";
     run["message"] = error.what();
+    run["session"] = "";  // nothing was run
     return run;
   }
   run["pairing_seconds"] = pairing_timer.ElapsedSeconds();
@@ -621,8 +623,7 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
           result.methods[earlier].Ok()) {
         MethodResult copy = result.methods[earlier];
         copy.method = method.spec;
-        copy.message =
-            "same pairs as " + methods_[earlier].spec + " (k capped at N-1)";
+        copy.message = "same pairs as " + methods_[earlier].spec;
         result.methods.push_back(copy);
         duplicate = true;
       }
@@ -727,6 +728,12 @@ std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
 }
 
 bool BenchmarkOptions::Check() const {
+  for (const std::string& arg : gcn_matching_args) {
+    if (StringStartsWith(arg, "--GcnMatching.pairing") ||
+        arg == "--GcnMatching.k" || StringStartsWith(arg, "--GcnMatching.k=")) {
+      return false;  // set by each method
+    }
+  }
   return !datasets.empty() && !methods.empty() && !output_path.empty() &&
          labels.Check() && pose.Check() && mapper_num_threads != 0;
 }

@@ -57,6 +57,10 @@ struct BenchmarkOptions {
   std::vector<std::string> matching_args;
   std::vector<std::string> mapper_args;
 
+  // Extra --GcnMatching.* arguments for every method's generator (e.g.
+  // --GcnMatching.model_path for gcn); pairing and k come from the method.
+  std::vector<std::string> gcn_matching_args;
+
   // Show all of COLMAP's output.
   bool verbose = false;
 

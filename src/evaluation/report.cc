@@ -49,15 +49,19 @@ class Table {
   std::vector<std::vector<std::string>> rows_;
 };
 
-std::string MethodLabel(const MethodResult& result, size_t num_images) {
+std::string MethodLabel(const MethodResult& result) {
+  std::string label = result.method;
   // Show the cap when k was limited by the scene size.
   const size_t colon = result.method.find(':');
   if (result.k > 0 && colon != std::string::npos &&
       std::to_string(result.k) != result.method.substr(colon + 1)) {
-    return result.method + " (k=" + std::to_string(result.k) + ", N-1)";
+    label += " (k=" + std::to_string(result.k) + ")";
   }
-  (void)num_images;
-  return result.method;
+  if (result.Ok() && !result.message.empty()) {
+    // e.g. "same pairs as exhaustive": the row repeats that method's run.
+    label += " (" + result.message + ")";
+  }
+  return label;
 }
 
 std::string StatusRow(const MethodResult& result) {
@@ -130,7 +134,7 @@ void SceneSection(const SceneResult& scene, std::ostringstream* out) {
               "accurate"});
   const MethodResult* exhaustive = FindExhaustive(scene);
   for (const MethodResult& method : scene.methods) {
-    const std::string label = MethodLabel(method, scene.num_images);
+    const std::string label = MethodLabel(method);
     if (!method.Ok()) {
       const std::string status = StatusRow(method);
       retrieval.Row({label, status});

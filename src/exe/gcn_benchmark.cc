@@ -94,6 +94,7 @@ int RunGcnBenchmark(int argc, char** argv) {
   manager.AddPassThroughPrefix("SiftExtraction.");
   manager.AddPassThroughPrefix("SiftMatching.");
   manager.AddPassThroughPrefix("Mapper.");
+  manager.AddPassThroughPrefix("GcnMatching.");
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
@@ -102,6 +103,7 @@ int RunGcnBenchmark(int argc, char** argv) {
       ArgumentsWithPrefix(args, {"ImageReader.", "SiftExtraction."});
   options.matching_args = ArgumentsWithPrefix(args, {"SiftMatching."});
   options.mapper_args = ArgumentsWithPrefix(args, {"Mapper."});
+  options.gcn_matching_args = ArgumentsWithPrefix(args, {"GcnMatching."});
   options.pair_generator_factory = &CreatePairGeneratorFromArguments;
   std::vector<std::string> command = {"colmap"};
   for (int i = 0; i < argc; ++i) command.push_back(ShellQuote(argv[i]));
