@@ -369,11 +369,20 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
         (run.GetDoubleOr("tau_mo", -1) != options_.labels.min_overlap ||
          run.GetDoubleOr("tau_ct", -1) !=
              options_.labels.min_common_track_ratio);
-    if (!thresholds_changed) {
+    // A "same pairs as" record is only valid while its owner is one of
+    // this scene's runs.
+    const auto owner = pair_set_owners_.find(run.GetStringOr("pairs_hash", ""));
+    const bool stale_duplicate =
+        run.Has("same_as") && (owner == pair_set_owners_.end() ||
+                               owner->second != run.Get("same_as").AsString() ||
+                               owner->second == method.spec);
+    if (!thresholds_changed && !stale_duplicate) {
       Progress(name, method.spec + ": matching cached");
       return run;
     }
-    Progress(name, method.spec + ": label thresholds changed, rerunning");
+    Progress(name,
+             method.spec +
+                 ": cached run outdated (thresholds or pair set), rerunning");
   }
   RemovePath(dir);
   CreateDirIfNotExists(dir);
@@ -403,7 +412,7 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
   const std::string pairs_hash = PairSetHash(pairs);
   run["pairs_hash"] = pairs_hash;
   const auto same = pair_set_owners_.find(pairs_hash);
-  if (same != pair_set_owners_.end()) {
+  if (same != pair_set_owners_.end() && same->second != method.spec) {
     // Identical pairs (e.g. knn with k >= N - 1 and exhaustive): matching
     // and mapping them again would only cost time.
     run["status"] = "ok";
@@ -608,8 +617,10 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
   result.image_names = scene.image_names;
   LoadGroundTruth(&scene);
   result.has_gt_cameras = scene.has_gt;
-  BuildLabels(&scene, &result);
+  // Pair ids repeat between scenes with the same number of images: the
+  // pair sets of another scene must never stand in for this one's.
   pair_set_owners_.clear();
+  BuildLabels(&scene, &result);
 
   for (size_t m = 0; m < methods_.size(); ++m) {
     const BenchmarkMethod& method = methods_[m];
