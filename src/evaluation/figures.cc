@@ -109,9 +109,9 @@ void WritePrecisionRecallPlot(
     const std::vector<PrecisionRecallSeries>& series,
     const std::vector<std::pair<std::string, std::pair<double, double>>>&
         references) {
-  const int width = 640;
+  const int width = 700;
   const int height = 420;
-  const int left = 60, right = 170, top = 40, bottom = 50;
+  const int left = 60, right = 230, top = 40, bottom = 50;
   cv::Mat image(height, width, CV_8UC3, kWhite);
   const int plot_w = width - left - right;
   const int plot_h = height - top - bottom;
