@@ -16,32 +16,6 @@
 #include "util/timer.h"
 
 namespace colmap_gcn {
-namespace {
-
-// The pass-through arguments that belong to one COLMAP option group.
-std::vector<std::string> ArgumentsWithPrefix(
-    const std::vector<std::string>& args,
-    const std::vector<std::string>& prefixes) {
-  std::vector<std::string> selected;
-  for (size_t i = 0; i < args.size(); ++i) {
-    bool match = false;
-    for (const auto& prefix : prefixes) {
-      match = match || StringStartsWith(args[i], "--" + prefix);
-    }
-    const bool has_value = args[i].find('=') == std::string::npos &&
-                           i + 1 < args.size() &&
-                           !StringStartsWith(args[i + 1], "--");
-    if (match) {
-      selected.push_back(args[i]);
-      if (has_value) selected.push_back(args[i + 1]);
-    }
-    if (has_value) ++i;
-  }
-  return selected;
-}
-
-}  // namespace
-
 int RunGcnReconstructor(int argc, char** argv) {
   std::string image_path;
   std::string workspace_path;

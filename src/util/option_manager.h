@@ -47,6 +47,13 @@ class OptionManager {
   std::vector<std::string> pass_through_;
 };
 
+// The arguments of `args` (as collected by PassThroughArguments) whose
+// option starts with "--<prefix>" for one of the prefixes, with their values:
+// splits pass-through options between COLMAP commands.
+std::vector<std::string> ArgumentsWithPrefix(
+    const std::vector<std::string>& args,
+    const std::vector<std::string>& prefixes);
+
 template <typename T>
 void OptionManager::AddRequiredOption(const std::string& name,
                                       T* option,

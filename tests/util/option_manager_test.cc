@@ -74,3 +74,29 @@ TEST(OptionManager, RejectsUnknownMissingAndMalformed) {
 
 }  // namespace
 }  // namespace colmap_gcn
+
+namespace colmap_gcn {
+namespace {
+
+TEST(ArgumentsWithPrefix, SelectsOptionsWithTheirValues) {
+  const std::vector<std::string> args = {"--SiftMatching.max_ratio",
+                                         "0.7",
+                                         "--Mapper.num_threads=1",
+                                         "--ImageReader.single_camera",
+                                         "1",
+                                         "--SiftExtraction.use_gpu",
+                                         "0"};
+  EXPECT_EQ(ArgumentsWithPrefix(args, {"SiftMatching."}),
+            (std::vector<std::string>{"--SiftMatching.max_ratio", "0.7"}));
+  EXPECT_EQ(ArgumentsWithPrefix(args, {"Mapper."}),
+            (std::vector<std::string>{"--Mapper.num_threads=1"}));
+  EXPECT_EQ(ArgumentsWithPrefix(args, {"ImageReader.", "SiftExtraction."}),
+            (std::vector<std::string>{"--ImageReader.single_camera",
+                                      "1",
+                                      "--SiftExtraction.use_gpu",
+                                      "0"}));
+  EXPECT_TRUE(ArgumentsWithPrefix(args, {"GcnMatching."}).empty());
+}
+
+}  // namespace
+}  // namespace colmap_gcn
