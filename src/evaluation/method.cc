@@ -56,6 +56,8 @@ BenchmarkMethod ParseBenchmarkMethod(const std::string& spec) {
 std::vector<BenchmarkMethod> ParseBenchmarkMethods(
     const std::string& comma_list) {
   std::vector<BenchmarkMethod> methods;
+  // Features and labels only: the scenes `colmap gcn_train` reads.
+  if (StringTrim(comma_list) == "none") return methods;
   for (const std::string& entry : StringSplit(comma_list, ",")) {
     const std::string trimmed = StringTrim(entry);
     if (trimmed.empty()) continue;

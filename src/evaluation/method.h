@@ -23,6 +23,7 @@ struct BenchmarkMethod {
 
 // Throws Error on an unknown method name or a bad k.
 BenchmarkMethod ParseBenchmarkMethod(const std::string& spec);
+// "none" gives no methods: scenes are only extracted and labelled.
 std::vector<BenchmarkMethod> ParseBenchmarkMethods(
     const std::string& comma_list);
 

@@ -41,7 +41,8 @@ int RunGcnBenchmark(int argc, char** argv) {
   manager.AddDefaultOption("methods",
                            &options.methods,
                            "comma list: exhaustive, knn:<k>, "
-                           "vocab_tree:<k>, gcn, oracle");
+                           "vocab_tree:<k>, gcn, oracle; none: features "
+                           "and labels only (for gcn_train)");
   manager.AddRequiredOption("output_path", &options.output_path);
   manager.AddDefaultOption("Benchmark.tau_mo",
                            &options.labels.min_overlap,

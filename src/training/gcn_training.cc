@@ -71,7 +71,8 @@ std::vector<LabelledScene> FindLabelledScenes(
 }
 
 bool GcnTrainingPipelineOptions::Check() const {
-  return vlad.Check() && labels.Check() && training.Check();
+  return vlad.Check() && labels.Check() && training.Check() &&
+         (threshold < 0 || (threshold > 0 && threshold < 1));
 }
 
 GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
@@ -145,6 +146,21 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   model.embedding.type = "vlad";
   model.embedding.dim = vlad.OutputDim();
   model.embedding.blob = vlad.Serialize();
+  if (options.threshold >= 0) {
+    model.info.threshold = static_cast<float>(options.threshold);
+  } else {
+    // Chosen on held-out data when there is some: on the training scenes
+    // the network's scores are optimistic.
+    const std::vector<GcnTrainingScene>& selection =
+        validation.empty() ? train : validation;
+    model.info.threshold =
+        SelectGcnThreshold(model, selection, options.training.num_threads);
+    if (log) {
+      log("decision threshold " + std::to_string(model.info.threshold) +
+          " (max mean F on the " +
+          (validation.empty() ? "training" : "validation") + " scenes)");
+    }
+  }
   std::ostringstream notes;
   notes << "trained on";
   for (const auto& scene : training_scenes) notes << " " << scene.name;
@@ -154,7 +170,8 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   }
   notes << "; VLAD " << vlad.NumWords() << " words -> " << vlad.OutputDim()
         << "-D; tau_MO " << options.labels.min_overlap << ", tau_CT "
-        << options.labels.min_common_track_ratio << "; seed " << training.seed;
+        << options.labels.min_common_track_ratio << "; threshold "
+        << model.info.threshold << "; seed " << training.seed;
   model.info.notes = notes.str();
   return model;
 }
@@ -214,6 +231,85 @@ std::vector<std::pair<int, int>> MostSimilarPairs(
                     });
   pairs.resize(num_pairs);
   return pairs;
+}
+
+std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
+                                           int k,
+                                           int num_threads) {
+  const int n = static_cast<int>(embeddings.rows());
+  if (n < 2 || k <= 0) return {};
+  KnnOptions knn_options;
+  knn_options.k = std::min(k, n - 1);
+  knn_options.num_threads = num_threads;
+  const KnnGraph graph = ComputeExactKnn(embeddings, knn_options);
+  std::unordered_set<uint64_t> seen;
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < graph.K(); ++c) {
+      const int j = graph.indices(i, c);
+      if (j < 0 || j == i || !seen.insert(PairKey(i, j)).second) continue;
+      pairs.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  }
+  return pairs;
+}
+
+std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
+                                             const GcnTrainingScene& scene,
+                                             int num_threads) {
+  GcnPairingOptions options = GcnPairingOptionsFromModel(model);
+  options.threshold = 0;
+  options.min_pairs_per_image = 0;
+  options.num_threads = num_threads;
+  std::vector<image_t> ids(scene.embeddings.rows());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<image_t>(i + 1);
+  GcnPairGenerator generator(options, ids, scene.embeddings, model);
+  std::vector<ScoredRowPair> candidates;
+  for (const auto& pair : generator.ScoredPairs()) {
+    candidates.push_back({static_cast<int>(pair.image_id1) - 1,
+                          static_cast<int>(pair.image_id2) - 1,
+                          pair.score});
+  }
+  return candidates;
+}
+
+std::vector<std::pair<int, int>> PairsAtThreshold(
+    const std::vector<ScoredRowPair>& candidates, float threshold) {
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& candidate : candidates) {
+    if (candidate.score >= threshold) {
+      pairs.emplace_back(candidate.row1, candidate.row2);
+    }
+  }
+  return pairs;
+}
+
+float SelectGcnThreshold(const GcnModel& model,
+                         const std::vector<GcnTrainingScene>& scenes,
+                         int num_threads) {
+  if (scenes.empty()) return model.info.threshold;
+  std::vector<std::vector<ScoredRowPair>> candidates;
+  for (const auto& scene : scenes) {
+    candidates.push_back(GcnCandidatePairs(model, scene, num_threads));
+  }
+  float best_threshold = model.info.threshold;
+  double best_f = -1;
+  // Integer steps so the grid is exact and the choice reproducible.
+  for (int step = 1; step <= 19; ++step) {
+    const float threshold = 0.05f * step;
+    double sum_f = 0;
+    for (size_t s = 0; s < scenes.size(); ++s) {
+      sum_f +=
+          ScorePairSet(PairsAtThreshold(candidates[s], threshold), scenes[s])
+              .F();
+    }
+    const double mean_f = sum_f / scenes.size();
+    if (mean_f >= best_f) {
+      best_f = mean_f;
+      best_threshold = threshold;
+    }
+  }
+  return best_threshold;
 }
 
 std::vector<std::pair<int, int>> GcnRetrievedPairs(

@@ -35,6 +35,12 @@ struct GcnTrainingPipelineOptions {
   // The network and optimiser (GcnTrainer).
   GcnTrainingOptions training;
 
+  // Decision threshold stored in the model. < 0: the one maximising the
+  // mean pair-set F over the validation scenes (SelectGcnThreshold), so
+  // the class-balanced loss's uncalibrated scores become a useful operating
+  // point; training.threshold is then only used for the epoch statistics.
+  double threshold = 0.5;
+
   bool Check() const;
 };
 
@@ -68,6 +74,33 @@ PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
 // `num_pairs` most similar unordered pairs (ties by index).
 std::vector<std::pair<int, int>> MostSimilarPairs(
     const EmbeddingMatrix& embeddings, size_t num_pairs);
+
+// The fixed-k retrieval baseline (paper's "CNN kNN"): the union of every
+// image's k most similar images, as KnnPairGenerator selects them.
+std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
+                                           int k,
+                                           int num_threads);
+
+// Every candidate pair of the GCN (1-hop nodes of all QESs, the model's
+// recommended k1, k2, u) with its score, the max over both directions.
+struct ScoredRowPair {
+  int row1 = 0;
+  int row2 = 0;
+  float score = 0.f;
+};
+std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
+                                             const GcnTrainingScene& scene,
+                                             int num_threads);
+
+// The candidates a threshold keeps (as GcnPairGenerator does).
+std::vector<std::pair<int, int>> PairsAtThreshold(
+    const std::vector<ScoredRowPair>& candidates, float threshold);
+
+// The threshold in {0.05, 0.10, ..., 0.95} maximising the mean pair-set F
+// over the scenes (ties: the higher threshold, fewer pairs).
+float SelectGcnThreshold(const GcnModel& model,
+                         const std::vector<GcnTrainingScene>& scenes,
+                         int num_threads);
 
 // The pairs the GCN retrieves for a scene (GcnPairGenerator with the model's
 // recommended settings, threshold only, no min_pairs_per_image fallback).
