@@ -91,6 +91,7 @@ void SceneSection(const SceneResult& scene, std::ostringstream* out) {
        << scene.num_matchable_pairs << " matchable pairs among "
        << scene.num_labelled_images << " labelled images; feature extraction "
        << Format("%.1f", scene.extraction_seconds) << " s.\n\n";
+  if (scene.methods.empty()) return;  // --methods none: prepared only
   std::set<std::string> sessions;
   for (const MethodResult& method : scene.methods) {
     if (method.Ok() && !method.session.empty()) sessions.insert(method.session);
@@ -234,6 +235,12 @@ std::string FormatBenchmarkReport(const BenchmarkResults& results) {
          "largest model's camera centres; fractions are over all images "
          "with ground truth.\n\n";
 
+  if (results.methods.empty()) {
+    out << "No methods run (`--methods none`): the scenes below are "
+           "prepared (features and labels) for `colmap gcn_train`.\n\n";
+    for (const SceneResult& scene : results.scenes) SceneSection(scene, &out);
+    return out.str();
+  }
   // Averages over scenes (paper Tables 1-2 average over GL3D scenes).
   out << "## Average over scenes\n\n";
   Table average({"method",

@@ -4,6 +4,7 @@
 
 #include "evaluation/labels.h"
 #include "evaluation/method.h"
+#include "evaluation/report.h"
 #include "util/error.h"
 #include "util/file.h"
 
@@ -138,7 +139,30 @@ TEST(BenchmarkMethod, ParsesSpecsAndCapsK) {
   EXPECT_THROW(ParseBenchmarkMethod("knn"), Error);
   EXPECT_THROW(ParseBenchmarkMethod("knn:0"), Error);
   EXPECT_THROW(ParseBenchmarkMethod("exhaustive:3"), Error);
+  EXPECT_THROW(ParseBenchmarkMethod("exhaustiv"), Error);
   EXPECT_THROW(ParseBenchmarkMethods("knn:5,knn:5"), Error);
+  EXPECT_THROW(ParseBenchmarkMethods(" , "), Error);
+  // "none": features and labels only.
+  EXPECT_TRUE(ParseBenchmarkMethods(" none ").empty());
+  EXPECT_THROW(ParseBenchmarkMethods("none,gcn"), Error);
+}
+
+TEST(BenchmarkReport, PreparedScenesOnlyWithoutMethods) {
+  BenchmarkResults results;
+  SceneResult scene;
+  scene.name = "synth-ordinary-80-s1";
+  scene.kind = "synthetic";
+  scene.label_source = "synthetic overlap";
+  scene.num_images = 80;
+  scene.num_labelled_images = 80;
+  scene.num_matchable_pairs = 1205;
+  results.scenes.push_back(scene);
+  const std::string report = FormatBenchmarkReport(results);
+  EXPECT_NE(report.find("--methods none"), std::string::npos) << report;
+  EXPECT_NE(report.find("## synth-ordinary-80-s1"), std::string::npos);
+  EXPECT_NE(report.find("1205 matchable pairs"), std::string::npos);
+  EXPECT_EQ(report.find("Average over scenes"), std::string::npos);
+  EXPECT_EQ(report.find("| method |"), std::string::npos) << report;
 }
 
 }  // namespace
