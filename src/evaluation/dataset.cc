@@ -140,9 +140,8 @@ DatasetSpec ParseDatasetSpec(const std::string& spec) {
 
 std::vector<DatasetSpec> ParseDatasetSpecs(const std::string& comma_list) {
   std::vector<DatasetSpec> specs;
-  for (const std::string& entry : StringSplit(comma_list, ",")) {
-    const std::string trimmed = StringTrim(entry);
-    if (!trimmed.empty()) specs.push_back(ParseDatasetSpec(trimmed));
+  for (const std::string& entry : SplitCommaList(comma_list)) {
+    specs.push_back(ParseDatasetSpec(entry));
   }
   if (specs.empty()) ThrowError("--datasets names no dataset");
   for (size_t i = 0; i < specs.size(); ++i) {

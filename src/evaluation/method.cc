@@ -63,9 +63,7 @@ std::vector<BenchmarkMethod> ParseBenchmarkMethods(
   std::vector<BenchmarkMethod> methods;
   // Features and labels only: the scenes `colmap gcn_train` reads.
   if (StringTrim(comma_list) == "none") return methods;
-  for (const std::string& entry : StringSplit(comma_list, ",")) {
-    const std::string trimmed = StringTrim(entry);
-    if (trimmed.empty()) continue;
+  for (const std::string& trimmed : SplitCommaList(comma_list)) {
     methods.push_back(ParseBenchmarkMethod(trimmed));
     for (size_t i = 0; i + 1 < methods.size(); ++i) {
       if (methods[i].DirName() == methods.back().DirName()) {

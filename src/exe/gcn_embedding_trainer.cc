@@ -46,10 +46,7 @@ int RunGcnEmbeddingTrainer(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
-  std::vector<std::string> paths;
-  for (const std::string& path : StringSplit(database_paths, ",")) {
-    if (!StringTrim(path).empty()) paths.push_back(StringTrim(path));
-  }
+  const std::vector<std::string> paths = SplitCommaList(database_paths);
   if (paths.empty()) {
     ThrowError("--database_paths lists no database");
   }

@@ -14,14 +14,6 @@
 namespace colmap_gcn {
 namespace {
 
-std::vector<std::string> SplitList(const std::string& list) {
-  std::vector<std::string> items;
-  for (const auto& item : StringSplit(list, ",")) {
-    if (!StringTrim(item).empty()) items.push_back(StringTrim(item));
-  }
-  return items;
-}
-
 // GCN against fixed-k retrieval on the same embedding, per held-out scene
 // and on average: kNN with the same number of pairs (most similar first),
 // per-image top-k with the smallest k giving at least as many pairs, and
@@ -169,16 +161,16 @@ int RunGcnTrain(int argc, char** argv) {
     training.threshold = static_cast<float>(options.threshold);
   }
   training.lr_decay_epochs.clear();
-  for (const auto& epoch : SplitList(lr_decay_epochs)) {
+  for (const auto& epoch : SplitCommaList(lr_decay_epochs)) {
     training.lr_decay_epochs.push_back(std::stoi(epoch));
   }
 
   const std::vector<std::string> validation_names =
-      SplitList(validation_scenes);
-  const std::vector<std::string> test_names = SplitList(test_scenes);
+      SplitCommaList(validation_scenes);
+  const std::vector<std::string> test_names = SplitCommaList(test_scenes);
   std::vector<LabelledScene> train;
   for (const auto& scene :
-       FindLabelledScenes(benchmark_path, SplitList(scenes))) {
+       FindLabelledScenes(benchmark_path, SplitCommaList(scenes))) {
     const bool held_out =
         std::count(
             validation_names.begin(), validation_names.end(), scene.name) > 0 ||

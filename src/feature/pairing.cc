@@ -133,6 +133,16 @@ ImportedPairGenerator::ImportedPairGenerator(
   }
 }
 
+std::vector<ImagePair> NextPairBlock(const std::vector<ImagePair>& pairs,
+                                     const int block_size,
+                                     size_t* pair_idx) {
+  const size_t begin = std::min(*pair_idx, pairs.size());
+  const size_t end =
+      std::min(pairs.size(), begin + static_cast<size_t>(block_size));
+  *pair_idx = end;
+  return std::vector<ImagePair>(pairs.begin() + begin, pairs.begin() + end);
+}
+
 ImportedPairGenerator::ImportedPairGenerator(
     const ImagePairsMatchingOptions& options, const Database& database)
     : ImportedPairGenerator(options, database.ReadAllImages()) {}
@@ -144,13 +154,7 @@ bool ImportedPairGenerator::HasFinished() const {
 }
 
 std::vector<ImagePair> ImportedPairGenerator::Next() {
-  const size_t end_idx =
-      std::min(image_pairs_.size(),
-               pair_idx_ + static_cast<size_t>(options_.block_size));
-  std::vector<ImagePair> block(image_pairs_.begin() + pair_idx_,
-                               image_pairs_.begin() + end_idx);
-  pair_idx_ = end_idx;
-  return block;
+  return NextPairBlock(image_pairs_, options_.block_size, &pair_idx_);
 }
 
 }  // namespace colmap_gcn

@@ -45,6 +45,13 @@ class PairGenerator {
   std::vector<ImagePair> AllPairs();
 };
 
+// The next block of a generator's precomputed pair list, pairs[*pair_idx,
+// *pair_idx + block_size), advancing *pair_idx: the Next() of generators
+// that do all their work up front.
+std::vector<ImagePair> NextPairBlock(const std::vector<ImagePair>& pairs,
+                                     int block_size,
+                                     size_t* pair_idx);
+
 // All N(N-1)/2 pairs, in blocks of block_size x block_size images.
 class ExhaustivePairGenerator : public PairGenerator {
  public:

@@ -79,13 +79,7 @@ bool KnnPairGenerator::HasFinished() const {
 }
 
 std::vector<ImagePair> KnnPairGenerator::Next() {
-  const size_t end =
-      std::min(image_pairs_.size(),
-               pair_idx_ + static_cast<size_t>(options_.block_size));
-  std::vector<ImagePair> block(image_pairs_.begin() + pair_idx_,
-                               image_pairs_.begin() + end);
-  pair_idx_ = end;
-  return block;
+  return NextPairBlock(image_pairs_, options_.block_size, &pair_idx_);
 }
 
 }  // namespace colmap_gcn

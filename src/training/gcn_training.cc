@@ -8,6 +8,7 @@
 
 #include "gcn/gcn_pair_generator.h"
 #include "retrieval/embedding_cache.h"
+#include "retrieval/knn_pairing.h"
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -241,15 +242,13 @@ std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
   KnnOptions knn_options;
   knn_options.k = std::min(k, n - 1);
   knn_options.num_threads = num_threads;
-  const KnnGraph graph = ComputeExactKnn(embeddings, knn_options);
-  std::unordered_set<uint64_t> seen;
+  // KnnPairGenerator's selection, with row indices as image ids.
+  std::vector<image_t> rows(n);
+  for (int i = 0; i < n; ++i) rows[i] = static_cast<image_t>(i);
   std::vector<std::pair<int, int>> pairs;
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < graph.K(); ++c) {
-      const int j = graph.indices(i, c);
-      if (j < 0 || j == i || !seen.insert(PairKey(i, j)).second) continue;
-      pairs.emplace_back(std::min(i, j), std::max(i, j));
-    }
+  for (const auto& [i, j] :
+       KnnGraphToPairs(ComputeExactKnn(embeddings, knn_options), rows)) {
+    pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
   }
   return pairs;
 }

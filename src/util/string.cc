@@ -30,6 +30,15 @@ std::string StringTrim(const std::string& str) {
   return str.substr(begin, end - begin + 1);
 }
 
+std::vector<std::string> SplitCommaList(const std::string& list) {
+  std::vector<std::string> items;
+  for (const std::string& item : StringSplit(list, ",")) {
+    const std::string trimmed = StringTrim(item);
+    if (!trimmed.empty()) items.push_back(trimmed);
+  }
+  return items;
+}
+
 bool StringStartsWith(const std::string& str, const std::string& prefix) {
   return str.size() >= prefix.size() &&
          str.compare(0, prefix.size(), prefix) == 0;

@@ -11,6 +11,9 @@ std::vector<std::string> StringSplit(const std::string& str,
 
 std::string StringTrim(const std::string& str);
 
+// The items of an option's comma list, trimmed, empty items dropped.
+std::vector<std::string> SplitCommaList(const std::string& list);
+
 bool StringStartsWith(const std::string& str, const std::string& prefix);
 
 // Joins elements with a separator.

@@ -16,6 +16,13 @@ TEST(StringTrim, RemovesSurroundingWhitespace) {
   EXPECT_EQ(StringTrim(" \t "), "");
 }
 
+TEST(SplitCommaList, TrimsAndDropsEmptyItems) {
+  EXPECT_EQ(SplitCommaList(" a.db, b c.db ,,"),
+            (std::vector<std::string>{"a.db", "b c.db"}));
+  EXPECT_TRUE(SplitCommaList(" , ").empty());
+  EXPECT_TRUE(SplitCommaList("").empty());
+}
+
 TEST(ShellQuote, QuotesOnlyWhenNeeded) {
   EXPECT_EQ(ShellQuote("--database_path=/a/b.db"), "--database_path=/a/b.db");
   EXPECT_EQ(ShellQuote("my file"), "'my file'");
