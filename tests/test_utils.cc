@@ -11,6 +11,25 @@
 namespace colmap_gcn {
 namespace test {
 
+const char* const kColmap38Schema = R"sql(
+CREATE TABLE cameras (camera_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL,
+  model INTEGER NOT NULL, width INTEGER NOT NULL, height INTEGER NOT NULL,
+  params BLOB, prior_focal_length INTEGER NOT NULL);
+CREATE TABLE images (image_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL,
+  name TEXT NOT NULL UNIQUE, camera_id INTEGER NOT NULL, prior_qw REAL,
+  prior_qx REAL, prior_qy REAL, prior_qz REAL, prior_tx REAL, prior_ty REAL,
+  prior_tz REAL);
+CREATE TABLE keypoints (image_id INTEGER PRIMARY KEY NOT NULL,
+  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
+CREATE TABLE descriptors (image_id INTEGER PRIMARY KEY NOT NULL,
+  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
+CREATE TABLE matches (pair_id INTEGER PRIMARY KEY NOT NULL,
+  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
+CREATE TABLE two_view_geometries (pair_id INTEGER PRIMARY KEY NOT NULL,
+  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB,
+  config INTEGER NOT NULL, F BLOB, E BLOB, H BLOB, qvec BLOB, tvec BLOB);
+)sql";
+
 std::string SharedDatasetsDir() {
   const char* env = std::getenv("COLMAP_GCN_SHARED_DIR");
   const std::string shared =

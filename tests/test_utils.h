@@ -19,5 +19,9 @@ std::string FrontendExe();
 // Returns the exit code (or -1 if it could not run).
 int RunShell(const std::string& command, std::string* output = nullptr);
 
+// COLMAP 3.8's CREATE TABLE statements (as `.schema` prints them for a
+// database made by `colmap database_creator`), for hand-made databases.
+extern const char* const kColmap38Schema;
+
 }  // namespace test
 }  // namespace colmap_gcn

@@ -4,31 +4,17 @@
 
 #include <random>
 
+#include "test_utils.h"
 #include "util/error.h"
 
 namespace colmap_gcn {
 namespace test {
 namespace {
 
-const char kSchema[] = R"sql(
-CREATE TABLE cameras (camera_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL,
-  model INTEGER NOT NULL, width INTEGER NOT NULL, height INTEGER NOT NULL,
-  params BLOB, prior_focal_length INTEGER NOT NULL);
-CREATE TABLE images (image_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL,
-  name TEXT NOT NULL UNIQUE, camera_id INTEGER NOT NULL, prior_qw REAL,
-  prior_qx REAL, prior_qy REAL, prior_qz REAL, prior_tx REAL, prior_ty REAL,
-  prior_tz REAL);
-CREATE TABLE keypoints (image_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
-CREATE TABLE descriptors (image_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
-CREATE TABLE matches (pair_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
-CREATE TABLE two_view_geometries (pair_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB,
-  config INTEGER NOT NULL, F BLOB, E BLOB, H BLOB, qvec BLOB, tvec BLOB);
-INSERT INTO cameras VALUES (1, 0, 640, 480, NULL, 0);
-)sql";
+// A 3.8 database with one camera.
+const std::string kSchema =
+    std::string(kColmap38Schema) +
+    "INSERT INTO cameras VALUES (1, 0, 640, 480, NULL, 0);\n";
 
 void Check(int code, sqlite3* db) {
   if (code != SQLITE_OK && code != SQLITE_DONE && code != SQLITE_ROW) {
@@ -60,7 +46,7 @@ void CreateDescriptorDatabase(
     const std::vector<std::pair<std::string, FeatureDescriptors>>& images) {
   sqlite3* db = nullptr;
   Check(sqlite3_open(path.c_str(), &db), db);
-  Check(sqlite3_exec(db, kSchema, nullptr, nullptr, nullptr), db);
+  Check(sqlite3_exec(db, kSchema.c_str(), nullptr, nullptr, nullptr), db);
   for (size_t i = 0; i < images.size(); ++i) {
     const image_t image_id = static_cast<image_t>(i + 1);
     const std::string sql =

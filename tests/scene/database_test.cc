@@ -12,6 +12,7 @@
 #include <Eigen/LU>
 
 #include "scene/colmap_scene_fixture.h"
+#include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
 
@@ -19,28 +20,8 @@ namespace colmap_gcn {
 namespace {
 
 using test::ExecuteSql;
+using test::kColmap38Schema;
 using test::QuerySqlInt;
-
-// COLMAP 3.8's CREATE TABLE statements (as `.schema` prints them for a
-// database made by `colmap database_creator`).
-const char* const kColmap38Schema = R"sql(
-CREATE TABLE cameras (camera_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL,
-  model INTEGER NOT NULL, width INTEGER NOT NULL, height INTEGER NOT NULL,
-  params BLOB, prior_focal_length INTEGER NOT NULL);
-CREATE TABLE images (image_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL,
-  name TEXT NOT NULL UNIQUE, camera_id INTEGER NOT NULL, prior_qw REAL,
-  prior_qx REAL, prior_qy REAL, prior_qz REAL, prior_tx REAL, prior_ty REAL,
-  prior_tz REAL);
-CREATE TABLE keypoints (image_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
-CREATE TABLE descriptors (image_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
-CREATE TABLE matches (pair_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB);
-CREATE TABLE two_view_geometries (pair_id INTEGER PRIMARY KEY NOT NULL,
-  rows INTEGER NOT NULL, cols INTEGER NOT NULL, data BLOB,
-  config INTEGER NOT NULL, F BLOB, E BLOB, H BLOB, qvec BLOB, tvec BLOB);
-)sql";
 
 // A COLMAP 4.x-like layout: rigs/frames/frame_data/pose_priors tables, images
 // without prior columns, descriptors with a type column.
