@@ -103,158 +103,171 @@ void WriteViewGraphImage(const std::string& path,
   WritePng(path, image);
 }
 
+namespace {
+
+// A [0, 1]-valued line chart: frame, grid, x ticks, legend on the right.
+class LineChart {
+ public:
+  LineChart(const std::string& title,
+            const std::string& x_label,
+            const std::vector<double>& x_ticks,
+            bool log_x)
+      : image_(kHeight, kWidth, CV_8UC3, kWhite), log_x_(log_x) {
+    for (const double x : x_ticks) {
+      x_min_ = std::min(x_min_, x);
+      x_max_ = std::max(x_max_, x);
+    }
+    if (log_x_) x_min_ = 0;
+    if (!(x_max_ > x_min_)) x_max_ = x_min_ + 1;
+    cv::putText(image_,
+                title,
+                cv::Point(kLeft, 25),
+                kFont,
+                0.55,
+                kBlack,
+                1,
+                cv::LINE_AA);
+    cv::rectangle(image_, cv::Rect(kLeft, kTop, PlotW(), PlotH()), kBlack, 1);
+    for (int t = 0; t <= 4; ++t) {
+      const double v = t / 4.0;
+      cv::line(image_, Pt(x_min_, v), Pt(x_max_, v), kLightGrey, 1);
+      char label[16];
+      std::snprintf(label, sizeof(label), "%.2f", v);
+      Text(label, cv::Point(10, Pt(x_min_, v).y + 5));
+    }
+    for (const double x : x_ticks) {
+      char label[16];
+      std::snprintf(label, sizeof(label), "%g", x);
+      Text(label, cv::Point(Pt(x, 0).x - 8, kTop + PlotH() + 18));
+    }
+    Text(x_label, cv::Point(kLeft + PlotW() / 2 - 40, kHeight - 12), 0.45);
+  }
+
+  cv::Point Pt(double x, double y) const {
+    const double fx = log_x_ ? std::log(x + 1.0) / std::log(x_max_ + 1.0)
+                             : (x - x_min_) / (x_max_ - x_min_);
+    return cv::Point(kLeft + static_cast<int>(std::lround(PlotW() * fx)),
+                     kTop + static_cast<int>(std::lround(PlotH() * (1.0 - y))));
+  }
+
+  void Line(cv::Point a, cv::Point b, const cv::Scalar& colour, bool dashed) {
+    if (!dashed) {
+      cv::line(image_, a, b, colour, 2, cv::LINE_AA);
+      return;
+    }
+    const double length = std::hypot(b.x - a.x, b.y - a.y);
+    const int steps = std::max(1, static_cast<int>(length / 6));
+    for (int s = 0; s < steps; s += 2) {
+      const double t0 = static_cast<double>(s) / steps;
+      const double t1 = std::min(1.0, static_cast<double>(s + 1) / steps);
+      cv::line(image_,
+               cv::Point(a.x + (b.x - a.x) * t0, a.y + (b.y - a.y) * t0),
+               cv::Point(a.x + (b.x - a.x) * t1, a.y + (b.y - a.y) * t1),
+               colour,
+               2);
+    }
+  }
+
+  // A polyline with markers (filled for solid lines, open for dashed).
+  void Series(const std::vector<double>& x,
+              const std::vector<double>& y,
+              const cv::Scalar& colour,
+              bool dashed) {
+    for (size_t i = 0; i < x.size() && i < y.size(); ++i) {
+      cv::circle(image_, Pt(x[i], y[i]), 3, colour, dashed ? 1 : cv::FILLED);
+      if (i > 0) Line(Pt(x[i - 1], y[i - 1]), Pt(x[i], y[i]), colour, dashed);
+    }
+  }
+
+  void Legend(const std::string& text, const cv::Scalar& colour, bool dashed) {
+    const int x0 = kLeft + PlotW() + 12;
+    Line(cv::Point(x0, legend_y_),
+         cv::Point(x0 + 24, legend_y_),
+         colour,
+         dashed);
+    Text(text, cv::Point(x0 + 30, legend_y_ + 4));
+    legend_y_ += 18;
+  }
+
+  void Write(const std::string& path) const { WritePng(path, image_); }
+
+  static cv::Scalar Colour(size_t i) {
+    static const std::vector<cv::Scalar> kColours = {cv::Scalar(180, 100, 30),
+                                                     cv::Scalar(30, 120, 230),
+                                                     cv::Scalar(60, 160, 60),
+                                                     cv::Scalar(150, 60, 150),
+                                                     cv::Scalar(40, 40, 200)};
+    return kColours[i % kColours.size()];
+  }
+
+ private:
+  static constexpr int kWidth = 700, kHeight = 420;
+  static constexpr int kLeft = 60, kRight = 230, kTop = 40, kBottom = 50;
+  static constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+  static int PlotW() { return kWidth - kLeft - kRight; }
+  static int PlotH() { return kHeight - kTop - kBottom; }
+  void Text(const std::string& text, cv::Point at, double scale = 0.4) {
+    cv::putText(image_, text, at, kFont, scale, kBlack, 1, cv::LINE_AA);
+  }
+
+  cv::Mat image_;
+  bool log_x_;
+  double x_min_ = 1e300, x_max_ = -1e300;
+  int legend_y_ = kTop + 10;
+};
+
+}  // namespace
+
 void WritePrecisionRecallPlot(
     const std::string& path,
     const std::string& title,
     const std::vector<PrecisionRecallSeries>& series,
     const std::vector<std::pair<std::string, std::pair<double, double>>>&
         references) {
-  const int width = 700;
-  const int height = 420;
-  const int left = 60, right = 230, top = 40, bottom = 50;
-  cv::Mat image(height, width, CV_8UC3, kWhite);
-  const int plot_w = width - left - right;
-  const int plot_h = height - top - bottom;
-  int max_k = 1;
-  for (const auto& s : series) {
-    for (int k : s.k) max_k = std::max(max_k, k);
-  }
   // log-scaled k axis: the paper's k values span 5..100.
-  const double log_max = std::log(static_cast<double>(max_k) + 1.0);
-  const auto x_of = [&](int k) {
-    return left +
-           static_cast<int>(std::lround(
-               plot_w * std::log(static_cast<double>(k) + 1.0) / log_max));
-  };
-  const auto y_of = [&](double v) {
-    return top + static_cast<int>(std::lround(plot_h * (1.0 - v)));
-  };
-  const int font = cv::FONT_HERSHEY_SIMPLEX;
-  cv::putText(
-      image, title, cv::Point(left, 25), font, 0.55, kBlack, 1, cv::LINE_AA);
-  cv::rectangle(image, cv::Rect(left, top, plot_w, plot_h), kBlack, 1);
-  for (int t = 0; t <= 4; ++t) {
-    const double v = t / 4.0;
-    cv::line(image,
-             cv::Point(left, y_of(v)),
-             cv::Point(left + plot_w, y_of(v)),
-             kLightGrey,
-             1);
-    char label[16];
-    std::snprintf(label, sizeof(label), "%.2f", v);
-    cv::putText(image,
-                label,
-                cv::Point(10, y_of(v) + 5),
-                font,
-                0.4,
-                kBlack,
-                1,
-                cv::LINE_AA);
-  }
-  std::set<int> ticks;
+  std::set<double> ticks;
   for (const auto& s : series) ticks.insert(s.k.begin(), s.k.end());
-  for (int k : ticks) {
-    cv::putText(image,
-                std::to_string(k),
-                cv::Point(x_of(k) - 8, top + plot_h + 18),
-                font,
-                0.4,
-                kBlack,
-                1,
-                cv::LINE_AA);
-  }
-  cv::putText(image,
-              "k (log scale)",
-              cv::Point(left + plot_w / 2 - 40, height - 12),
-              font,
-              0.45,
-              kBlack,
-              1,
-              cv::LINE_AA);
-  const std::vector<cv::Scalar> colours = {cv::Scalar(180, 100, 30),
-                                           cv::Scalar(30, 120, 230),
-                                           cv::Scalar(60, 160, 60),
-                                           cv::Scalar(150, 60, 150),
-                                           cv::Scalar(40, 40, 200)};
-  int legend_y = top + 10;
-  const auto legend =
-      [&](const std::string& text, const cv::Scalar& colour, bool dashed) {
-        const int x0 = left + plot_w + 12;
-        if (dashed) {
-          for (int x = x0; x < x0 + 24; x += 8) {
-            cv::line(image,
-                     cv::Point(x, legend_y),
-                     cv::Point(x + 4, legend_y),
-                     colour,
-                     2);
-          }
-        } else {
-          cv::line(image,
-                   cv::Point(x0, legend_y),
-                   cv::Point(x0 + 24, legend_y),
-                   colour,
-                   2);
-        }
-        cv::putText(image,
-                    text,
-                    cv::Point(x0 + 30, legend_y + 4),
-                    font,
-                    0.4,
-                    kBlack,
-                    1,
-                    cv::LINE_AA);
-        legend_y += 18;
-      };
-  const auto dashed_line =
-      [&](cv::Point a, cv::Point b, const cv::Scalar& colour) {
-        const double length = std::hypot(b.x - a.x, b.y - a.y);
-        const int steps = std::max(1, static_cast<int>(length / 6));
-        for (int s = 0; s < steps; s += 2) {
-          const double t0 = static_cast<double>(s) / steps;
-          const double t1 = std::min(1.0, static_cast<double>(s + 1) / steps);
-          cv::line(image,
-                   cv::Point(a.x + (b.x - a.x) * t0, a.y + (b.y - a.y) * t0),
-                   cv::Point(a.x + (b.x - a.x) * t1, a.y + (b.y - a.y) * t1),
-                   colour,
-                   2);
-        }
-      };
+  if (ticks.empty()) ticks.insert(1);
+  LineChart chart(
+      title, "k (log scale)", {ticks.begin(), ticks.end()}, /*log_x=*/true);
   size_t colour_idx = 0;
   for (const auto& s : series) {
-    const cv::Scalar colour = colours[colour_idx++ % colours.size()];
-    for (size_t i = 0; i < s.k.size(); ++i) {
-      const cv::Point p(x_of(s.k[i]), y_of(s.precision[i]));
-      const cv::Point r(x_of(s.k[i]), y_of(s.recall[i]));
-      cv::circle(image, p, 3, colour, cv::FILLED);
-      cv::circle(image, r, 3, colour, 1);
-      if (i > 0) {
-        cv::line(image,
-                 cv::Point(x_of(s.k[i - 1]), y_of(s.precision[i - 1])),
-                 p,
-                 colour,
-                 2,
-                 cv::LINE_AA);
-        dashed_line(
-            cv::Point(x_of(s.k[i - 1]), y_of(s.recall[i - 1])), r, colour);
-      }
-    }
-    legend(s.name + " precision", colour, false);
-    legend(s.name + " recall", colour, true);
+    const cv::Scalar colour = LineChart::Colour(colour_idx++);
+    const std::vector<double> k(s.k.begin(), s.k.end());
+    chart.Series(k, s.precision, colour, false);
+    chart.Series(k, s.recall, colour, true);
+    chart.Legend(s.name + " precision", colour, false);
+    chart.Legend(s.name + " recall", colour, true);
   }
+  const double x_max = *ticks.rbegin();
   for (const auto& [name, values] : references) {
-    const cv::Scalar colour = colours[colour_idx++ % colours.size()];
-    cv::line(image,
-             cv::Point(left, y_of(values.first)),
-             cv::Point(left + plot_w, y_of(values.first)),
-             colour,
-             1);
-    dashed_line(cv::Point(left, y_of(values.second)),
-                cv::Point(left + plot_w, y_of(values.second)),
-                colour);
-    legend(name + " precision", colour, false);
-    legend(name + " recall", colour, true);
+    const cv::Scalar colour = LineChart::Colour(colour_idx++);
+    chart.Line(chart.Pt(0, values.first),
+               chart.Pt(x_max, values.first),
+               colour,
+               false);
+    chart.Line(chart.Pt(0, values.second),
+               chart.Pt(x_max, values.second),
+               colour,
+               true);
+    chart.Legend(name + " precision", colour, false);
+    chart.Legend(name + " recall", colour, true);
   }
-  WritePng(path, image);
+  chart.Write(path);
+}
+
+void WriteLinePlot(const std::string& path,
+                   const std::string& title,
+                   const std::string& x_label,
+                   const std::vector<double>& x,
+                   const std::vector<LinePlotSeries>& series) {
+  LineChart chart(title, x_label, x, /*log_x=*/false);
+  for (size_t i = 0; i < series.size(); ++i) {
+    const cv::Scalar colour = LineChart::Colour(i);
+    chart.Series(x, series[i].y, colour, series[i].dashed);
+    chart.Legend(series[i].name, colour, series[i].dashed);
+  }
+  chart.Write(path);
 }
 
 }  // namespace colmap_gcn

@@ -40,4 +40,17 @@ void WritePrecisionRecallPlot(
     const std::vector<std::pair<std::string, std::pair<double, double>>>&
         references);
 
+// Curves with values in [0, 1] against a linear x axis (ticks at x), e.g.
+// precision / recall / F against a parameter (the paper's Fig. 7).
+struct LinePlotSeries {
+  std::string name;
+  std::vector<double> y;  // one per x
+  bool dashed = false;
+};
+void WriteLinePlot(const std::string& path,
+                   const std::string& title,
+                   const std::string& x_label,
+                   const std::vector<double>& x,
+                   const std::vector<LinePlotSeries>& series);
+
 }  // namespace colmap_gcn

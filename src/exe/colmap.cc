@@ -13,6 +13,7 @@
 #include "exe/gcn_benchmark.h"
 #include "exe/gcn_embedding_trainer.h"
 #include "exe/gcn_matcher.h"
+#include "exe/gcn_model_evaluator.h"
 #include "exe/gcn_reconstructor.h"
 #include "exe/gcn_synth.h"
 #include "exe/gcn_train.h"
@@ -30,6 +31,7 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
   commands.emplace_back("gcn_reconstructor", &RunGcnReconstructor);
   commands.emplace_back("gcn_synth", &RunGcnSynth);
   commands.emplace_back("gcn_train", &RunGcnTrain);
+  commands.emplace_back("gcn_model_evaluator", &RunGcnModelEvaluator);
   commands.emplace_back("gcn_embedding_trainer", &RunGcnEmbeddingTrainer);
   commands.emplace_back("gcn_vocab_tree_builder", &RunGcnVocabTreeBuilder);
   commands.emplace_back("gcn_benchmark", &RunGcnBenchmark);

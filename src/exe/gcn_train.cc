@@ -6,6 +6,7 @@
 
 #include "gcn/model_file.h"
 #include "training/gcn_training.h"
+#include "training/model_evaluation.h"
 #include "util/error.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -14,85 +15,8 @@
 namespace colmap_gcn {
 namespace {
 
-// GCN against fixed-k retrieval on the same embedding, per held-out scene
-// and on average: kNN with the same number of pairs (most similar first),
-// per-image top-k with the smallest k giving at least as many pairs, and
-// the best top-k F over k in {1, ..., 50} (an upper bound no fixed k
-// chosen without labels can beat).
-void PrintHeldOutComparison(const GcnModel& model,
-                            const std::vector<LabelledScene>& scenes,
-                            const GcnTrainingPipelineOptions& options) {
-  const VladEmbedding vlad =
-      VladEmbedding::Deserialize(model.embedding.blob, "the trained model");
-  const int num_threads = options.training.num_threads;
-  std::printf("\nheld-out scenes, GCN threshold %.2f\n", model.info.threshold);
-  std::printf("%-26s %6s %6s | %-17s | %-17s | %-21s | %-21s\n",
-              "scene",
-              "pairs",
-              "labels",
-              "GCN  P    R    F",
-              "kNN= P    R    F",
-              "top-k=    P    R    F",
-              "best-k    P    R    F");
-  double sum_gcn = 0, sum_equal = 0, sum_topk = 0, sum_best = 0;
-  for (const auto& scene : scenes) {
-    const GcnTrainingScene made =
-        MakeTrainingScene(scene, vlad, options.labels, num_threads);
-    const PairSetScores gcn =
-        ScorePairSet(GcnRetrievedPairs(model, made, num_threads), made);
-    const PairSetScores equal =
-        ScorePairSet(MostSimilarPairs(made.embeddings, gcn.num_pairs), made);
-    const int n = static_cast<int>(made.embeddings.rows());
-    int equal_k = 0;
-    PairSetScores topk;
-    int best_k = 0;
-    PairSetScores best;
-    for (int k = 1; k <= std::min(50, n - 1); ++k) {
-      const PairSetScores scores =
-          ScorePairSet(TopKPairs(made.embeddings, k, num_threads), made);
-      if (equal_k == 0 && scores.num_pairs >= gcn.num_pairs) {
-        equal_k = k;
-        topk = scores;
-      }
-      if (best_k == 0 || scores.F() > best.F()) {
-        best_k = k;
-        best = scores;
-      }
-    }
-    std::printf(
-        "%-26s %6zu %6zu | %4.2f %4.2f %4.2f    | %4.2f %4.2f %4.2f    | "
-        "k=%-3d %4.2f %4.2f %4.2f | k=%-3d %4.2f %4.2f %4.2f\n",
-        scene.name.c_str(),
-        gcn.num_pairs,
-        gcn.num_positives,
-        gcn.Precision(),
-        gcn.Recall(),
-        gcn.F(),
-        equal.Precision(),
-        equal.Recall(),
-        equal.F(),
-        equal_k,
-        topk.Precision(),
-        topk.Recall(),
-        topk.F(),
-        best_k,
-        best.Precision(),
-        best.Recall(),
-        best.F());
-    sum_gcn += gcn.F();
-    sum_equal += equal.F();
-    sum_topk += topk.F();
-    sum_best += best.F();
-  }
-  const double n = static_cast<double>(scenes.size());
-  std::printf(
-      "mean F: GCN %.3f, kNN at equal pairs %.3f, top-k at equal "
-      "pairs %.3f, best fixed k %.3f\n",
-      sum_gcn / n,
-      sum_equal / n,
-      sum_topk / n,
-      sum_best / n);
-}
+// The largest per-image k of the fixed-k baselines (the paper's k range).
+const int kMaxFixedK = 100;
 
 }  // namespace
 
@@ -195,8 +119,18 @@ int RunGcnTrain(int argc, char** argv) {
               model.info.notes.c_str(),
               timer.ElapsedSeconds());
   if (!test_names.empty()) {
-    PrintHeldOutComparison(
-        model, FindLabelledScenes(benchmark_path, test_names), options);
+    std::vector<FixedKComparison> comparisons;
+    for (const auto& scene :
+         EmbedScenesForModel(model,
+                             FindLabelledScenes(benchmark_path, test_names),
+                             options.labels,
+                             training.num_threads)) {
+      comparisons.push_back(
+          CompareWithFixedK(model, scene, kMaxFixedK, training.num_threads));
+    }
+    std::printf(
+        "\nHeld-out scenes\n\n%s",
+        FormatFixedKComparison(comparisons, model.info.threshold).c_str());
   }
   return 0;
 }

@@ -1,0 +1,119 @@
+#include "exe/gcn_model_evaluator.h"
+
+#include <cstdio>
+#include <fstream>
+
+#include "controllers/gcn_model_pairing.h"
+#include "gcn/model_file.h"
+#include "training/model_evaluation.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/option_manager.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+
+int RunGcnModelEvaluator(int argc, char** argv) {
+  std::string benchmark_path;
+  std::string scenes;
+  std::string model_path;
+  std::string output_path;
+  std::string sensitivity_path;
+  double tau_mo = -1;
+  double tau_ct = -1;
+  int max_k = 100;
+  int num_threads = -1;
+  OptionManager manager(
+      "gcn_model_evaluator",
+      "Compares a GCN model with fixed-k retrieval on labelled scenes "
+      "prepared by `colmap gcn_benchmark` (e.g. --methods none) and, with "
+      "--sensitivity_path, sweeps k1, k2, u and the threshold. Never "
+      "evaluate on scenes the model was trained on.");
+  manager.AddRequiredOption("benchmark_path",
+                            &benchmark_path,
+                            "gcn_benchmark output folder with the scenes");
+  manager.AddDefaultOption(
+      "scenes", &scenes, "comma list; empty: every labelled scene");
+  manager.AddDefaultOption(
+      "model_path", &model_path, "empty: the default model");
+  manager.AddDefaultOption(
+      "output_path", &output_path, "markdown file for the table (optional)");
+  manager.AddDefaultOption("sensitivity_path",
+                           &sensitivity_path,
+                           "folder for sensitivity.csv and plots (optional)");
+  manager.AddDefaultOption("max_k", &max_k, "largest per-image k compared");
+  manager.AddDefaultOption(
+      "tau_mo", &tau_mo, "label thresholds; < 0: the model's training ones");
+  manager.AddDefaultOption("tau_ct", &tau_ct);
+  manager.AddDefaultOption("num_threads", &num_threads, "-1: all cores");
+  if (!manager.Parse(argc, argv)) {
+    return 0;
+  }
+  if (model_path.empty()) model_path = DefaultGcnModelPath();
+  const GcnModel model = ReadGcnModel(model_path);
+  PairLabelOptions labels;
+  labels.min_overlap = tau_mo < 0 ? model.info.tau_mo : tau_mo;
+  labels.min_common_track_ratio = tau_ct < 0 ? model.info.tau_ct : tau_ct;
+  if (max_k < 1 || !labels.Check()) {
+    ThrowError("invalid options: max_k >= 1, thresholds in (0, 1]");
+  }
+  const std::vector<GcnTrainingScene> embedded = EmbedScenesForModel(
+      model,
+      FindLabelledScenes(benchmark_path, SplitCommaList(scenes)),
+      labels,
+      num_threads);
+
+  std::vector<FixedKComparison> comparisons;
+  for (const auto& scene : embedded) {
+    comparisons.push_back(CompareWithFixedK(model, scene, max_k, num_threads));
+  }
+  const std::string table =
+      FormatFixedKComparison(comparisons, model.info.threshold);
+  std::printf("model %s (k1 %d, k2 %d, u %d)\n\n%s",
+              model_path.c_str(),
+              model.info.test_k1,
+              model.info.test_k2,
+              model.info.test_u,
+              table.c_str());
+  if (!output_path.empty()) {
+    std::ofstream file(output_path);
+    file << table;
+    if (!file) ThrowError("cannot write ", output_path);
+  }
+  if (!sensitivity_path.empty()) {
+    GcnSensitivityOptions options;
+    options.num_threads = num_threads;
+    const auto points = ComputeGcnSensitivity(model, embedded, options);
+    WriteGcnSensitivity(
+        points,
+        "mean over " + std::to_string(embedded.size()) + " held-out scenes",
+        sensitivity_path);
+    std::printf(
+        "\nsensitivity (mean over scenes; others at k1 %d, k2 %d, "
+        "u %d, threshold %.2f)\n%-10s %6s %6s %6s %6s %8s\n",
+        model.info.test_k1,
+        model.info.test_k2,
+        model.info.test_u,
+        model.info.threshold,
+        "parameter",
+        "value",
+        "P",
+        "R",
+        "F",
+        "pairs/im");
+    for (const auto& point : points) {
+      std::printf("%-10s %6g %6.3f %6.3f %6.3f %8.2f\n",
+                  point.parameter.c_str(),
+                  point.value,
+                  point.precision,
+                  point.recall,
+                  point.f,
+                  point.pairs_per_image);
+    }
+    std::printf("wrote %s/sensitivity.csv and sensitivity_*.png\n",
+                sensitivity_path.c_str());
+  }
+  return 0;
+}
+
+}  // namespace colmap_gcn

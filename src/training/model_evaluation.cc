@@ -1,0 +1,222 @@
+#include "training/model_evaluation.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "evaluation/figures.h"
+#include "util/error.h"
+#include "util/file.h"
+
+namespace colmap_gcn {
+namespace {
+
+std::string Scores(const PairSetScores& scores) {
+  char text[64];
+  std::snprintf(text,
+                sizeof(text),
+                "%.3f | %.3f | %.3f",
+                scores.Precision(),
+                scores.Recall(),
+                scores.F());
+  return text;
+}
+
+// Mean precision, recall and F over scenes of the model at a setting.
+GcnSensitivityPoint Evaluate(const GcnModel& model,
+                             const std::vector<GcnTrainingScene>& scenes,
+                             const std::string& parameter,
+                             double value,
+                             int num_threads) {
+  GcnSensitivityPoint point;
+  point.parameter = parameter;
+  point.value = value;
+  for (const auto& scene : scenes) {
+    const PairSetScores scores =
+        ScorePairSet(GcnRetrievedPairs(model, scene, num_threads), scene);
+    point.precision += scores.Precision();
+    point.recall += scores.Recall();
+    point.f += scores.F();
+    point.pairs_per_image += static_cast<double>(scores.num_pairs) /
+                             std::max<int64_t>(1, scene.embeddings.rows());
+  }
+  const double n = static_cast<double>(std::max<size_t>(1, scenes.size()));
+  point.precision /= n;
+  point.recall /= n;
+  point.f /= n;
+  point.pairs_per_image /= n;
+  return point;
+}
+
+}  // namespace
+
+std::vector<GcnTrainingScene> EmbedScenesForModel(
+    const GcnModel& model,
+    const std::vector<LabelledScene>& scenes,
+    const PairLabelOptions& label_options,
+    int num_threads) {
+  if (model.embedding.type != "vlad") {
+    ThrowError("the model uses imported descriptors (",
+               model.embedding.type,
+               "); only VLAD models can embed benchmark scenes");
+  }
+  const VladEmbedding vlad =
+      VladEmbedding::Deserialize(model.embedding.blob, "the model");
+  std::vector<GcnTrainingScene> embedded;
+  for (const auto& scene : scenes) {
+    embedded.push_back(
+        MakeTrainingScene(scene, vlad, label_options, num_threads));
+  }
+  return embedded;
+}
+
+FixedKComparison CompareWithFixedK(const GcnModel& model,
+                                   const GcnTrainingScene& scene,
+                                   int max_k,
+                                   int num_threads) {
+  FixedKComparison result;
+  result.scene = scene.name;
+  result.gcn =
+      ScorePairSet(GcnRetrievedPairs(model, scene, num_threads), scene);
+  result.equal = ScorePairSet(
+      MostSimilarPairs(scene.embeddings, result.gcn.num_pairs), scene);
+  const int n = static_cast<int>(scene.embeddings.rows());
+  for (int k = 1; k <= std::min(max_k, n - 1); ++k) {
+    const PairSetScores scores =
+        ScorePairSet(TopKPairs(scene.embeddings, k, num_threads), scene);
+    if (result.equal_k == 0 && scores.num_pairs >= result.gcn.num_pairs) {
+      result.equal_k = k;
+      result.top_k_equal = scores;
+    }
+    if (result.best_k == 0 || scores.F() > result.top_k_best.F()) {
+      result.best_k = k;
+      result.top_k_best = scores;
+    }
+  }
+  return result;
+}
+
+std::string FormatFixedKComparison(
+    const std::vector<FixedKComparison>& comparisons, float threshold) {
+  std::ostringstream out;
+  char line[128];
+  std::snprintf(line, sizeof(line), "%.2f", threshold);
+  out << "GCN at threshold " << line
+      << "; kNN= the same number of pairs, most similar first; top-k= the "
+         "smallest per-image k with at least as many pairs; best k = the "
+         "per-image k with the highest F (chosen with the labels: an upper "
+         "bound for any fixed k).\n\n"
+      << "| scene | pairs | matchable | GCN P | R | F | kNN= P | R | F | "
+         "top-k= k | P | R | F | best k | P | R | F |\n"
+      << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+         "---:|---:|---:|---:|\n";
+  double gcn = 0, equal = 0, top_k = 0, best = 0;
+  int gcn_wins = 0;
+  for (const auto& c : comparisons) {
+    out << "| " << c.scene << " | " << c.gcn.num_pairs << " | "
+        << c.gcn.num_positives << " | " << Scores(c.gcn) << " | "
+        << Scores(c.equal) << " | " << c.equal_k << " | "
+        << Scores(c.top_k_equal) << " | " << c.best_k << " | "
+        << Scores(c.top_k_best) << " |\n";
+    gcn += c.gcn.F();
+    equal += c.equal.F();
+    top_k += c.top_k_equal.F();
+    best += c.top_k_best.F();
+    gcn_wins += c.gcn.F() >= c.top_k_best.F();
+  }
+  const double n = static_cast<double>(std::max<size_t>(1, comparisons.size()));
+  std::snprintf(line,
+                sizeof(line),
+                "%.3f, kNN= %.3f, top-k= %.3f, best k %.3f",
+                gcn / n,
+                equal / n,
+                top_k / n,
+                best / n);
+  out << "\nMean F: GCN " << line << "; GCN F >= best-k F on " << gcn_wins
+      << " of " << comparisons.size() << " scenes.\n";
+  return out.str();
+}
+
+bool GcnSensitivityOptions::Check() const {
+  auto positive = [](const std::vector<int>& values) {
+    return std::all_of(
+        values.begin(), values.end(), [](int v) { return v > 0; });
+  };
+  return positive(k1_values) && positive(k2_values) && positive(u_values) &&
+         std::all_of(thresholds.begin(), thresholds.end(), [](double t) {
+           return t > 0 && t < 1;
+         });
+}
+
+std::vector<GcnSensitivityPoint> ComputeGcnSensitivity(
+    const GcnModel& model,
+    const std::vector<GcnTrainingScene>& scenes,
+    const GcnSensitivityOptions& options) {
+  if (!options.Check()) ThrowError("invalid sensitivity options");
+  std::vector<GcnSensitivityPoint> points;
+  const auto sweep = [&](const std::string& parameter,
+                         const std::vector<double>& values,
+                         const auto& set) {
+    for (const double value : values) {
+      GcnModel varied = model;
+      set(&varied.info, value);
+      points.push_back(
+          Evaluate(varied, scenes, parameter, value, options.num_threads));
+    }
+  };
+  const auto as_double = [](const std::vector<int>& values) {
+    return std::vector<double>(values.begin(), values.end());
+  };
+  sweep("k1", as_double(options.k1_values), [](GcnModelInfo* info, double v) {
+    info->test_k1 = static_cast<int>(v);
+  });
+  sweep("k2", as_double(options.k2_values), [](GcnModelInfo* info, double v) {
+    info->test_k2 = static_cast<int>(v);
+  });
+  sweep("u", as_double(options.u_values), [](GcnModelInfo* info, double v) {
+    info->test_u = static_cast<int>(v);
+  });
+  sweep("threshold", options.thresholds, [](GcnModelInfo* info, double v) {
+    info->threshold = static_cast<float>(v);
+  });
+  return points;
+}
+
+void WriteGcnSensitivity(const std::vector<GcnSensitivityPoint>& points,
+                         const std::string& title,
+                         const std::string& dir) {
+  CreateDirIfNotExists(dir);
+  const std::string csv_path = JoinPaths(dir, "sensitivity.csv");
+  std::ofstream csv(csv_path);
+  if (!csv) ThrowError("cannot write ", csv_path);
+  csv << "parameter,value,precision,recall,f,pairs_per_image\n";
+  std::map<std::string, std::vector<const GcnSensitivityPoint*>> by_parameter;
+  for (const auto& point : points) {
+    csv << point.parameter << "," << point.value << "," << point.precision
+        << "," << point.recall << "," << point.f << "," << point.pairs_per_image
+        << "\n";
+    by_parameter[point.parameter].push_back(&point);
+  }
+  if (!csv) ThrowError("cannot write ", csv_path);
+  for (const auto& [parameter, series] : by_parameter) {
+    std::vector<double> x;
+    LinePlotSeries precision{"precision", {}, false};
+    LinePlotSeries recall{"recall", {}, true};
+    LinePlotSeries f{"F-measure", {}, false};
+    for (const GcnSensitivityPoint* point : series) {
+      x.push_back(point->value);
+      precision.y.push_back(point->precision);
+      recall.y.push_back(point->recall);
+      f.y.push_back(point->f);
+    }
+    WriteLinePlot(JoinPaths(dir, "sensitivity_" + parameter + ".png"),
+                  title + ": " + parameter,
+                  parameter,
+                  x,
+                  {precision, recall, f});
+  }
+}
+
+}  // namespace colmap_gcn

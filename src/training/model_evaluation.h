@@ -1,0 +1,74 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gcn/gcn_model.h"
+#include "training/gcn_training.h"
+
+namespace colmap_gcn {
+
+// The labelled scenes embedded with the model's own embedding (VLAD models
+// only; throws Error for models on imported descriptors).
+std::vector<GcnTrainingScene> EmbedScenesForModel(
+    const GcnModel& model,
+    const std::vector<LabelledScene>& scenes,
+    const PairLabelOptions& label_options,
+    int num_threads);
+
+// A model against fixed-k retrieval on the same embedding, on one scene
+// the model was not trained on.
+struct FixedKComparison {
+  std::string scene;
+  PairSetScores gcn;    // the model's recommended settings and threshold
+  PairSetScores equal;  // the gcn.num_pairs most similar pairs
+  int equal_k = 0;      // smallest per-image k giving >= gcn.num_pairs
+  PairSetScores top_k_equal;
+  int best_k = 0;  // per-image k in [1, max_k] with the best F
+  PairSetScores top_k_best;
+};
+
+FixedKComparison CompareWithFixedK(const GcnModel& model,
+                                   const GcnTrainingScene& scene,
+                                   int max_k,
+                                   int num_threads);
+
+// The comparison as a markdown table with a mean row.
+std::string FormatFixedKComparison(
+    const std::vector<FixedKComparison>& comparisons, float threshold);
+
+// Parameter sensitivity like the paper's Fig. 7: one of k1, k2, u and the
+// decision threshold varied at a time from the model's recommended
+// settings; precision, recall and F averaged over scenes.
+struct GcnSensitivityOptions {
+  std::vector<int> k1_values = {5, 10, 20, 30, 40, 60, 80, 100};
+  std::vector<int> k2_values = {1, 2, 3, 5, 8, 10};
+  std::vector<int> u_values = {1, 2, 3, 5, 8, 10};
+  std::vector<double> thresholds = {
+      0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
+  int num_threads = -1;
+
+  bool Check() const;
+};
+
+struct GcnSensitivityPoint {
+  std::string parameter;  // k1 | k2 | u | threshold
+  double value = 0;
+  double precision = 0;
+  double recall = 0;
+  double f = 0;
+  double pairs_per_image = 0;
+};
+
+std::vector<GcnSensitivityPoint> ComputeGcnSensitivity(
+    const GcnModel& model,
+    const std::vector<GcnTrainingScene>& scenes,
+    const GcnSensitivityOptions& options);
+
+// <dir>/sensitivity.csv and one plot per parameter,
+// <dir>/sensitivity_<parameter>.png (precision, recall, F).
+void WriteGcnSensitivity(const std::vector<GcnSensitivityPoint>& points,
+                         const std::string& title,
+                         const std::string& dir);
+
+}  // namespace colmap_gcn
