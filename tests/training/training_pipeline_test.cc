@@ -1,10 +1,13 @@
 #include "training/gcn_training.h"
 
+#include <algorithm>
 #include <set>
 
 #include <gtest/gtest.h>
 
 #include "gcn/gcn_test_utils.h"
+#include "training/model_evaluation.h"
+#include "util/file.h"
 
 namespace colmap_gcn {
 namespace {
@@ -122,6 +125,81 @@ TEST(TrainingPipeline, ThresholdSelectionMaximisesMeanF) {
         << "threshold " << 0.05f * step;
   }
   EXPECT_EQ(SelectGcnThreshold(model, {}, 1), 0.5f);
+}
+
+GcnModel SmallModel() {
+  GcnModel model =
+      InitializeGcnModel(test::SmallShape(16), GcnAggregation::kSymmetric, 4);
+  test::RandomizeModel(&model, 11);
+  model.info.test_k1 = 10;
+  model.info.test_k2 = 3;
+  model.info.test_u = 4;
+  model.info.threshold = 0.5f;
+  return model;
+}
+
+TEST(ModelEvaluation, FixedKComparisonIsConsistent) {
+  GcnTrainingScene scene = ClusteredScene();
+  scene.name = "clusters";
+  const GcnModel model = SmallModel();
+  const FixedKComparison c = CompareWithFixedK(model, scene, 100, 2);
+  EXPECT_EQ(c.scene, "clusters");
+  EXPECT_EQ(c.gcn.num_pairs, AsSet(GcnRetrievedPairs(model, scene, 1)).size());
+  EXPECT_EQ(c.equal.num_pairs, c.gcn.num_pairs);
+  // top-k= is the smallest k reaching the GCN's pair count.
+  ASSERT_GT(c.equal_k, 0);
+  EXPECT_GE(c.top_k_equal.num_pairs, c.gcn.num_pairs);
+  if (c.equal_k > 1) {
+    EXPECT_LT(TopKPairs(scene.embeddings, c.equal_k - 1, 1).size(),
+              c.gcn.num_pairs);
+  }
+  // best k has the highest F of every k.
+  const int n = static_cast<int>(scene.embeddings.rows());
+  for (int k = 1; k < n; ++k) {
+    EXPECT_LE(ScorePairSet(TopKPairs(scene.embeddings, k, 1), scene).F(),
+              c.top_k_best.F() + 1e-12);
+  }
+  EXPECT_GE(c.top_k_best.F(), c.top_k_equal.F());
+  EXPECT_GT(c.top_k_best.F(), 0.0);
+  const std::string table = FormatFixedKComparison({c, c}, 0.5f);
+  EXPECT_NE(table.find("| clusters |"), std::string::npos) << table;
+  EXPECT_NE(table.find("of 2 scenes"), std::string::npos) << table;
+}
+
+TEST(ModelEvaluation, SensitivityVariesOneParameterAtATime) {
+  const GcnTrainingScene scene = ClusteredScene();
+  const GcnModel model = SmallModel();
+  GcnSensitivityOptions options;
+  options.k1_values = {2, 10};
+  options.k2_values = {1};
+  options.u_values = {1, 4};
+  options.thresholds = {0.01, 0.5, 0.99};
+  options.num_threads = 1;
+  const auto points = ComputeGcnSensitivity(model, {scene}, options);
+  ASSERT_EQ(points.size(), 8u);
+  EXPECT_EQ(points[0].parameter, "k1");
+  EXPECT_EQ(points[7].parameter, "threshold");
+  // The model's own setting reproduces its pair set; thresholds only filter.
+  const PairSetScores own =
+      ScorePairSet(GcnRetrievedPairs(model, scene, 1), scene);
+  EXPECT_DOUBLE_EQ(points[1].f, own.F());  // k1 = 10
+  EXPECT_DOUBLE_EQ(points[6].f, own.F());  // threshold 0.5
+  EXPECT_GE(points[5].pairs_per_image, points[6].pairs_per_image);
+  EXPECT_GE(points[6].pairs_per_image, points[7].pairs_per_image);
+  // A larger k1 can only add candidates.
+  EXPECT_LE(points[0].recall, points[1].recall + 1e-12);
+  options.thresholds = {1.0};
+  EXPECT_FALSE(options.Check());
+
+  TemporaryDirectory dir("sensitivity_test");
+  WriteGcnSensitivity(points, "test", dir.Path());
+  const std::string csv =
+      ReadTextFile(JoinPaths(dir.Path(), "sensitivity.csv"));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 9);
+  for (const char* parameter : {"k1", "k2", "u", "threshold"}) {
+    EXPECT_TRUE(ExistsFile(JoinPaths(
+        dir.Path(), std::string("sensitivity_") + parameter + ".png")));
+  }
 }
 
 }  // namespace
