@@ -59,6 +59,12 @@ int RunGcnTrain(int argc, char** argv) {
                            &training.learning_rate);
   manager.AddDefaultOption("GcnTraining.num_epochs", &training.num_epochs);
   manager.AddDefaultOption("GcnTraining.batch_size", &training.batch_size);
+  std::string gcn_dims = "512,512,256,256";
+  manager.AddDefaultOption("GcnTraining.gcn_dims",
+                           &gcn_dims,
+                           "output sizes of the graph convolutions "
+                           "(paper / gcn_clustering: 512,512,256,256)");
+  manager.AddDefaultOption("GcnTraining.fc_dim", &training.shape.fc_dim);
   std::string lr_decay_epochs = "2,3";
   manager.AddDefaultOption("GcnTraining.lr_decay_epochs",
                            &lr_decay_epochs,
@@ -84,10 +90,9 @@ int RunGcnTrain(int argc, char** argv) {
   if (options.threshold > 0 && options.threshold < 1) {
     training.threshold = static_cast<float>(options.threshold);
   }
-  training.lr_decay_epochs.clear();
-  for (const auto& epoch : SplitCommaList(lr_decay_epochs)) {
-    training.lr_decay_epochs.push_back(std::stoi(epoch));
-  }
+  training.shape.gcn_dims = ParseIntList(gcn_dims, "--GcnTraining.gcn_dims");
+  training.lr_decay_epochs =
+      ParseIntList(lr_decay_epochs, "--GcnTraining.lr_decay_epochs");
 
   const std::vector<std::string> validation_names =
       SplitCommaList(validation_scenes);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "util/error.h"
+
 namespace colmap_gcn {
 
 std::vector<std::string> StringSplit(const std::string& str,
@@ -37,6 +39,25 @@ std::vector<std::string> SplitCommaList(const std::string& list) {
     if (!trimmed.empty()) items.push_back(trimmed);
   }
   return items;
+}
+
+std::vector<int> ParseIntList(const std::string& list,
+                              const std::string& what) {
+  std::vector<int> values;
+  for (const std::string& item : SplitCommaList(list)) {
+    size_t end = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &end);
+    } catch (const std::exception&) {
+      end = 0;
+    }
+    if (end != item.size()) {
+      ThrowError(what, ": \"", item, "\" is not an integer");
+    }
+    values.push_back(value);
+  }
+  return values;
 }
 
 bool StringStartsWith(const std::string& str, const std::string& prefix) {

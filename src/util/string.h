@@ -14,6 +14,9 @@ std::string StringTrim(const std::string& str);
 // The items of an option's comma list, trimmed, empty items dropped.
 std::vector<std::string> SplitCommaList(const std::string& list);
 
+// The integers of a comma list; throws Error naming `what` on anything else.
+std::vector<int> ParseIntList(const std::string& list, const std::string& what);
+
 bool StringStartsWith(const std::string& str, const std::string& prefix);
 
 // Joins elements with a separator.

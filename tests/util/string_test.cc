@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "util/error.h"
+
 namespace colmap_gcn {
 namespace {
 
@@ -21,6 +23,13 @@ TEST(SplitCommaList, TrimsAndDropsEmptyItems) {
             (std::vector<std::string>{"a.db", "b c.db"}));
   EXPECT_TRUE(SplitCommaList(" , ").empty());
   EXPECT_TRUE(SplitCommaList("").empty());
+}
+
+TEST(ParseIntList, ParsesOrNamesTheOption) {
+  EXPECT_EQ(ParseIntList("512, 256,", "--dims"), (std::vector<int>{512, 256}));
+  EXPECT_TRUE(ParseIntList("", "--dims").empty());
+  EXPECT_THROW(ParseIntList("512,25x", "--dims"), Error);
+  EXPECT_THROW(ParseIntList("a", "--dims"), Error);
 }
 
 TEST(ShellQuote, QuotesOnlyWhenNeeded) {
