@@ -88,6 +88,16 @@ int RunGcnBenchmark(int argc, char** argv) {
   std::cout << FormatBenchmarkReport(results) << std::flush;
   std::cerr << "[gcn_benchmark] report: " << options.output_path
             << "/report.md\n";
+  // A failed scene does not cost the others (exit 0), but is not silent.
+  std::vector<std::string> failed;
+  for (const SceneResult& scene : results.scenes) {
+    if (scene.status != "ok") failed.push_back(scene.name);
+  }
+  if (!failed.empty()) {
+    std::cerr << "[gcn_benchmark] WARNING: " << failed.size() << " of "
+              << results.scenes.size() << " scene(s) failed (see the report): "
+              << StringJoin(failed, ", ") << "\n";
+  }
   return 0;
 }
 

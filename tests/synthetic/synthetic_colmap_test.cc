@@ -111,7 +111,11 @@ TEST_F(SyntheticColmapTest, MapperRegistersImagesAtGroundTruthPoses) {
   EXPECT_EQ(result.num_gt_images, kNumImages);
   EXPECT_GE(result.RegisteredFraction(), 0.95)
       << result.num_registered << " of " << kNumImages << " registered";
-  EXPECT_LT(result.RelativeMedianError(), 0.01)
+  // COLMAP 3.8's matching and mapping are not repeatable (FLANN, RANSAC):
+  // runs of this scene give 0.3-3 % median centre error; a wrong ground
+  // truth (pose convention, intrinsics) or a folded model gives tens of %.
+  // 5 % is the benchmark's "accurate camera" bound.
+  EXPECT_LT(result.RelativeMedianError(), 0.05)
       << "median centre error " << result.median_position_error
       << " for scene size " << result.scene_size;
   // Distractors overlap nothing: the mapper must not place them.
