@@ -112,7 +112,8 @@ TEST_F(SyntheticColmapTest, MapperRegistersImagesAtGroundTruthPoses) {
   EXPECT_GE(result.RegisteredFraction(), 0.95)
       << result.num_registered << " of " << kNumImages << " registered";
   // COLMAP 3.8's matching and mapping are not repeatable (FLANN, RANSAC):
-  // runs of this scene give 0.3-3 % median centre error; a wrong ground
+  // runs of this scene gave < 1 % median centre error and once 3.0 %
+  // (fresh-clone CI check, machine under load); a wrong ground
   // truth (pose convention, intrinsics) or a folded model gives tens of %.
   // 5 % is the benchmark's "accurate camera" bound.
   EXPECT_LT(result.RelativeMedianError(), 0.05)
