@@ -63,10 +63,8 @@ int RunGcnModelEvaluator(int argc, char** argv) {
       labels,
       num_threads);
 
-  std::vector<FixedKComparison> comparisons;
-  for (const auto& scene : embedded) {
-    comparisons.push_back(CompareWithFixedK(model, scene, max_k, num_threads));
-  }
+  const std::vector<FixedKComparison> comparisons =
+      CompareWithFixedK(model, embedded, max_k, num_threads);
   const std::string table =
       FormatFixedKComparison(comparisons, model.info.threshold);
   std::printf("model %s (k1 %d, k2 %d, u %d)\n\n%s",

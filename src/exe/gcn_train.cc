@@ -87,9 +87,6 @@ int RunGcnTrain(int argc, char** argv) {
     return 0;
   }
   options.vlad.num_threads = training.num_threads;
-  if (options.threshold > 0 && options.threshold < 1) {
-    training.threshold = static_cast<float>(options.threshold);
-  }
   training.shape.gcn_dims = ParseIntList(gcn_dims, "--GcnTraining.gcn_dims");
   training.lr_decay_epochs =
       ParseIntList(lr_decay_epochs, "--GcnTraining.lr_decay_epochs");
@@ -124,15 +121,14 @@ int RunGcnTrain(int argc, char** argv) {
               model.info.notes.c_str(),
               timer.ElapsedSeconds());
   if (!test_names.empty()) {
-    std::vector<FixedKComparison> comparisons;
-    for (const auto& scene :
-         EmbedScenesForModel(model,
-                             FindLabelledScenes(benchmark_path, test_names),
-                             options.labels,
-                             training.num_threads)) {
-      comparisons.push_back(
-          CompareWithFixedK(model, scene, kMaxFixedK, training.num_threads));
-    }
+    const std::vector<FixedKComparison> comparisons = CompareWithFixedK(
+        model,
+        EmbedScenesForModel(model,
+                            FindLabelledScenes(benchmark_path, test_names),
+                            options.labels,
+                            training.num_threads),
+        kMaxFixedK,
+        training.num_threads);
     std::printf(
         "\nHeld-out scenes\n\n%s",
         FormatFixedKComparison(comparisons, model.info.threshold).c_str());

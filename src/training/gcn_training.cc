@@ -140,6 +140,10 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
       make_scenes(validation_scenes);
 
   GcnTrainingOptions training = options.training;
+  // A fixed threshold is also the one the epoch statistics use.
+  if (options.threshold > 0) {
+    training.threshold = static_cast<float>(options.threshold);
+  }
   training.tau_mo = static_cast<float>(options.labels.min_overlap);
   training.tau_ct = static_cast<float>(options.labels.min_common_track_ratio);
   GcnTrainer trainer(training);
@@ -234,6 +238,24 @@ std::vector<std::pair<int, int>> MostSimilarPairs(
   return pairs;
 }
 
+std::vector<std::pair<int, int>> TopKPairs(const KnnGraph& graph, int k) {
+  const int n = graph.NumImages();
+  k = std::min(k, graph.K());
+  if (n < 2 || k <= 0) return {};
+  // Rows are sorted by similarity: the top-k graph is the first k columns.
+  KnnGraph top_k;
+  top_k.indices = graph.indices.leftCols(k);
+  top_k.similarities = graph.similarities.leftCols(k);
+  // KnnPairGenerator's selection, with row indices as image ids.
+  std::vector<image_t> rows(n);
+  for (int i = 0; i < n; ++i) rows[i] = static_cast<image_t>(i);
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& [i, j] : KnnGraphToPairs(top_k, rows)) {
+    pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
+  }
+  return pairs;
+}
+
 std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
                                            int k,
                                            int num_threads) {
@@ -242,15 +264,7 @@ std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
   KnnOptions knn_options;
   knn_options.k = std::min(k, n - 1);
   knn_options.num_threads = num_threads;
-  // KnnPairGenerator's selection, with row indices as image ids.
-  std::vector<image_t> rows(n);
-  for (int i = 0; i < n; ++i) rows[i] = static_cast<image_t>(i);
-  std::vector<std::pair<int, int>> pairs;
-  for (const auto& [i, j] :
-       KnnGraphToPairs(ComputeExactKnn(embeddings, knn_options), rows)) {
-    pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
-  }
-  return pairs;
+  return TopKPairs(ComputeExactKnn(embeddings, knn_options), k);
 }
 
 std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
@@ -313,17 +327,8 @@ float SelectGcnThreshold(const GcnModel& model,
 
 std::vector<std::pair<int, int>> GcnRetrievedPairs(
     const GcnModel& model, const GcnTrainingScene& scene, int num_threads) {
-  GcnPairingOptions options = GcnPairingOptionsFromModel(model);
-  options.min_pairs_per_image = 0;
-  options.num_threads = num_threads;
-  std::vector<image_t> ids(scene.embeddings.rows());
-  for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<image_t>(i + 1);
-  GcnPairGenerator generator(options, ids, scene.embeddings, model);
-  std::vector<std::pair<int, int>> pairs;
-  for (const auto& [id1, id2] : generator.AllPairs()) {
-    pairs.emplace_back(static_cast<int>(id1) - 1, static_cast<int>(id2) - 1);
-  }
-  return pairs;
+  return PairsAtThreshold(GcnCandidatePairs(model, scene, num_threads),
+                          model.info.threshold);
 }
 
 }  // namespace colmap_gcn

@@ -38,7 +38,8 @@ struct GcnTrainingPipelineOptions {
   // Decision threshold stored in the model. < 0: the one maximising the
   // mean pair-set F over the validation scenes (SelectGcnThreshold), so
   // the class-balanced loss's uncalibrated scores become a useful operating
-  // point; training.threshold is then only used for the epoch statistics.
+  // point, and training.threshold only serves the epoch statistics; a fixed
+  // threshold (> 0) replaces training.threshold too.
   double threshold = 0.5;
 
   bool Check() const;
@@ -80,6 +81,9 @@ std::vector<std::pair<int, int>> MostSimilarPairs(
 std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
                                            int k,
                                            int num_threads);
+// The same from a kNN graph with at least k neighbours per row (its first k
+// columns), so several k share one search.
+std::vector<std::pair<int, int>> TopKPairs(const KnnGraph& graph, int k);
 
 // Every candidate pair of the GCN (1-hop nodes of all QESs, the model's
 // recommended k1, k2, u) with its score, the max over both directions.

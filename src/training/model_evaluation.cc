@@ -24,23 +24,22 @@ std::string Scores(const PairSetScores& scores) {
   return text;
 }
 
-// Mean precision, recall and F over scenes of the model at a setting.
-GcnSensitivityPoint Evaluate(const GcnModel& model,
-                             const std::vector<GcnTrainingScene>& scenes,
-                             const std::string& parameter,
-                             double value,
-                             int num_threads) {
+// Mean precision, recall and F of one pair set per scene.
+GcnSensitivityPoint MeanScores(
+    const std::vector<GcnTrainingScene>& scenes,
+    const std::vector<std::vector<std::pair<int, int>>>& pairs,
+    const std::string& parameter,
+    double value) {
   GcnSensitivityPoint point;
   point.parameter = parameter;
   point.value = value;
-  for (const auto& scene : scenes) {
-    const PairSetScores scores =
-        ScorePairSet(GcnRetrievedPairs(model, scene, num_threads), scene);
+  for (size_t s = 0; s < scenes.size(); ++s) {
+    const PairSetScores scores = ScorePairSet(pairs[s], scenes[s]);
     point.precision += scores.Precision();
     point.recall += scores.Recall();
     point.f += scores.F();
     point.pairs_per_image += static_cast<double>(scores.num_pairs) /
-                             std::max<int64_t>(1, scene.embeddings.rows());
+                             std::max<int64_t>(1, scenes[s].embeddings.rows());
   }
   const double n = static_cast<double>(std::max<size_t>(1, scenes.size()));
   point.precision /= n;
@@ -83,9 +82,13 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
   result.equal = ScorePairSet(
       MostSimilarPairs(scene.embeddings, result.gcn.num_pairs), scene);
   const int n = static_cast<int>(scene.embeddings.rows());
-  for (int k = 1; k <= std::min(max_k, n - 1); ++k) {
-    const PairSetScores scores =
-        ScorePairSet(TopKPairs(scene.embeddings, k, num_threads), scene);
+  if (n < 2) return result;
+  KnnOptions knn_options;
+  knn_options.k = std::min(max_k, n - 1);
+  knn_options.num_threads = num_threads;
+  const KnnGraph graph = ComputeExactKnn(scene.embeddings, knn_options);
+  for (int k = 1; k <= graph.K(); ++k) {
+    const PairSetScores scores = ScorePairSet(TopKPairs(graph, k), scene);
     if (result.equal_k == 0 && scores.num_pairs >= result.gcn.num_pairs) {
       result.equal_k = k;
       result.top_k_equal = scores;
@@ -96,6 +99,18 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
     }
   }
   return result;
+}
+
+std::vector<FixedKComparison> CompareWithFixedK(
+    const GcnModel& model,
+    const std::vector<GcnTrainingScene>& scenes,
+    int max_k,
+    int num_threads) {
+  std::vector<FixedKComparison> comparisons;
+  for (const auto& scene : scenes) {
+    comparisons.push_back(CompareWithFixedK(model, scene, max_k, num_threads));
+  }
+  return comparisons;
 }
 
 std::string FormatFixedKComparison(
@@ -157,30 +172,34 @@ std::vector<GcnSensitivityPoint> ComputeGcnSensitivity(
   if (!options.Check()) ThrowError("invalid sensitivity options");
   std::vector<GcnSensitivityPoint> points;
   const auto sweep = [&](const std::string& parameter,
-                         const std::vector<double>& values,
-                         const auto& set) {
-    for (const double value : values) {
+                         const std::vector<int>& values,
+                         int GcnModelInfo::*field) {
+    for (const int value : values) {
       GcnModel varied = model;
-      set(&varied.info, value);
-      points.push_back(
-          Evaluate(varied, scenes, parameter, value, options.num_threads));
+      varied.info.*field = value;
+      std::vector<std::vector<std::pair<int, int>>> pairs;
+      for (const auto& scene : scenes) {
+        pairs.push_back(GcnRetrievedPairs(varied, scene, options.num_threads));
+      }
+      points.push_back(MeanScores(scenes, pairs, parameter, value));
     }
   };
-  const auto as_double = [](const std::vector<int>& values) {
-    return std::vector<double>(values.begin(), values.end());
-  };
-  sweep("k1", as_double(options.k1_values), [](GcnModelInfo* info, double v) {
-    info->test_k1 = static_cast<int>(v);
-  });
-  sweep("k2", as_double(options.k2_values), [](GcnModelInfo* info, double v) {
-    info->test_k2 = static_cast<int>(v);
-  });
-  sweep("u", as_double(options.u_values), [](GcnModelInfo* info, double v) {
-    info->test_u = static_cast<int>(v);
-  });
-  sweep("threshold", options.thresholds, [](GcnModelInfo* info, double v) {
-    info->threshold = static_cast<float>(v);
-  });
+  sweep("k1", options.k1_values, &GcnModelInfo::test_k1);
+  sweep("k2", options.k2_values, &GcnModelInfo::test_k2);
+  sweep("u", options.u_values, &GcnModelInfo::test_u);
+  // The threshold only filters the candidates: score them once.
+  std::vector<std::vector<ScoredRowPair>> candidates;
+  for (const auto& scene : scenes) {
+    candidates.push_back(GcnCandidatePairs(model, scene, options.num_threads));
+  }
+  for (const double threshold : options.thresholds) {
+    std::vector<std::vector<std::pair<int, int>>> pairs;
+    for (const auto& scene_candidates : candidates) {
+      pairs.push_back(
+          PairsAtThreshold(scene_candidates, static_cast<float>(threshold)));
+    }
+    points.push_back(MeanScores(scenes, pairs, "threshold", threshold));
+  }
   return points;
 }
 

@@ -33,6 +33,13 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
                                    int max_k,
                                    int num_threads);
 
+// ... for each scene.
+std::vector<FixedKComparison> CompareWithFixedK(
+    const GcnModel& model,
+    const std::vector<GcnTrainingScene>& scenes,
+    int max_k,
+    int num_threads);
+
 // The comparison as a markdown table with a mean row.
 std::string FormatFixedKComparison(
     const std::vector<FixedKComparison>& comparisons, float threshold);
