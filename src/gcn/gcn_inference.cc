@@ -87,6 +87,14 @@ GcnScorer::GcnScorer(const GcnModel& model,
           projected_.data() + begin * 2 * h1,
           2 * h1);
   });
+  for (int l = 1; l < model_.shape.NumGcnLayers(); ++l) {
+    const auto weight = model_.params.GcnWeight(l);
+    packed_gcn_weights_.emplace_back(RowMajorView(
+        weight.data(), weight.rows(), weight.cols(), weight.cols()));
+  }
+  const auto fc1 = model_.params.Fc1Weight();
+  packed_fc1_weight_ = PackedMatrix(
+      RowMajorView(fc1.data(), fc1.rows(), fc1.cols(), fc1.cols()));
 }
 
 void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
@@ -122,12 +130,12 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
       const float gi = g1[i];
       for (int j = 0; j < h1; ++j) out[j] = pa[j] + base_a[j] - gi * base_b[j];
       for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
-        const float w = g.values[e];
-        const float* pb =
-            projected_.data() + subgraph.nodes[g.columns[e]] * pstride + h1;
-        for (int j = 0; j < h1; ++j) out[j] += w * pb[j];
+        Axpy(h1,
+             g.values[e],
+             projected_.data() + subgraph.nodes[g.columns[e]] * pstride + h1,
+             out);
       }
-      for (int j = 0; j < h1; ++j) out[j] = std::max(out[j], 0.f);
+      Relu(h1, out);
     }
   }
 
@@ -148,9 +156,7 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
       float* agg = crow + in;
       std::fill(agg, agg + in, 0.f);
       for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
-        const float w = g.values[e];
-        const float* src = h + static_cast<long>(g.columns[e]) * in;
-        for (int j = 0; j < in; ++j) agg[j] += w * src[j];
+        Axpy(in, g.values[e], h + static_cast<long>(g.columns[e]) * in, agg);
       }
     }
     const auto bias = params.GcnBias(l);
@@ -158,15 +164,12 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
       std::copy(
           bias.data(), bias.data() + out, h_next + static_cast<long>(i) * out);
     }
-    const auto w = params.GcnWeight(l);
     Sgemm(RowMajorView(cat, rows, 2 * in, 2 * in),
-          RowMajorView(w.data(), 2 * in, out, out),
+          packed_gcn_weights_[l - 1],
           1.f,
           h_next,
           out);
-    for (long i = 0; i < static_cast<long>(rows) * out; ++i) {
-      h_next[i] = std::max(h_next[i], 0.f);
-    }
+    Relu(static_cast<long>(rows) * out, h_next);
     std::swap(h, h_next);
   }
 
@@ -180,11 +183,7 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
     std::copy(
         fc1_bias.data(), fc1_bias.data() + fc, u + static_cast<long>(i) * fc);
   }
-  Sgemm(RowMajorView(h, n1, dl, dl),
-        RowMajorView(params.Fc1Weight().data(), dl, fc, fc),
-        1.f,
-        u,
-        fc);
+  Sgemm(RowMajorView(h, n1, dl, dl), packed_fc1_weight_, 1.f, u, fc);
   const auto prelu = params.Prelu();
   const auto fc2 = params.Fc2Weight();
   logits->resize(n1);

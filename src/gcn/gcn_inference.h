@@ -6,6 +6,7 @@
 
 #include "gcn/gcn_model.h"
 #include "gcn/query_enclosing_subgraph.h"
+#include "gcn/sgemm.h"
 #include "retrieval/knn.h"
 
 namespace colmap_gcn {
@@ -26,7 +27,8 @@ struct GcnWorkspace {
 //    all N images (memory N x 2 h1 floats) and c = (m .* s)^T W1.
 //  * Layers 2..L-1 run on all nodes (their outputs reach the 1-hop nodes);
 //    the last GCN layer and the FC layers run on the 1-hop rows only.
-//  * GEMMs use the packed AVX-512/AVX2 kernel (gcn/sgemm.h).
+//  * GEMMs use the packed AVX-512/AVX2 kernel (gcn/sgemm.h) with the
+//    weights of layers 2..L and FC1 packed once, not once per query.
 class GcnScorer {
  public:
   // Both must outlive the scorer. Throws Error on a dimension mismatch.
@@ -44,8 +46,10 @@ class GcnScorer {
  private:
   const GcnModel& model_;
   const EmbeddingMatrix& embeddings_;
-  RowMatrix<float> projected_;  // N x 2 h1: [P_a | P_b]
-  Eigen::VectorXf offset_;      // 2 h1: c = (m .* s)^T W1
+  RowMatrix<float> projected_;                    // N x 2 h1: [P_a | P_b]
+  Eigen::VectorXf offset_;                        // 2 h1: c = (m .* s)^T W1
+  std::vector<PackedMatrix> packed_gcn_weights_;  // layers 2..L
+  PackedMatrix packed_fc1_weight_;
 };
 
 // Runs fn(index, thread) for index in [0, n) on num_threads threads

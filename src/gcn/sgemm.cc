@@ -125,6 +125,54 @@ void KernelGeneric(int kc,
   AddTile(tile, NR, c, ldc, m_valid, n_valid);
 }
 
+__attribute__((target("avx512f"))) void AxpyAvx512(int n,
+                                                   float w,
+                                                   const float* x,
+                                                   float* y) {
+  const __m512 wv = _mm512_set1_ps(w);
+  int j = 0;
+  for (; j + 16 <= n; j += 16) {
+    // Multiply, then add: the scalar loop's rounding.
+    _mm512_storeu_ps(y + j,
+                     _mm512_add_ps(_mm512_loadu_ps(y + j),
+                                   _mm512_mul_ps(wv, _mm512_loadu_ps(x + j))));
+  }
+  for (; j < n; ++j) y[j] += w * x[j];
+}
+
+__attribute__((target("avx2"))) void AxpyAvx2(int n,
+                                              float w,
+                                              const float* x,
+                                              float* y) {
+  const __m256 wv = _mm256_set1_ps(w);
+  int j = 0;
+  for (; j + 8 <= n; j += 8) {
+    _mm256_storeu_ps(y + j,
+                     _mm256_add_ps(_mm256_loadu_ps(y + j),
+                                   _mm256_mul_ps(wv, _mm256_loadu_ps(x + j))));
+  }
+  for (; j < n; ++j) y[j] += w * x[j];
+}
+
+void AxpyGeneric(int n, float w, const float* x, float* y) {
+  for (int j = 0; j < n; ++j) y[j] += w * x[j];
+}
+
+// AVX2 also on AVX-512 machines: memory bound, and GCC 12 warns about
+// _mm512_max_ps (-Wmaybe-uninitialized inside its own header).
+__attribute__((target("avx2"))) void ReluAvx2(long n, float* x) {
+  const __m256 zero = _mm256_setzero_ps();
+  long j = 0;
+  for (; j + 8 <= n; j += 8) {
+    _mm256_storeu_ps(x + j, _mm256_max_ps(_mm256_loadu_ps(x + j), zero));
+  }
+  for (; j < n; ++j) x[j] = std::max(x[j], 0.f);
+}
+
+void ReluGeneric(long n, float* x) {
+  for (long j = 0; j < n; ++j) x[j] = std::max(x[j], 0.f);
+}
+
 typedef void (*KernelFn)(
     int, const float*, const float*, float*, long, int, int);
 
@@ -133,6 +181,8 @@ struct Kernel {
   int mr;
   int nr;
   const char* name;
+  void (*axpy)(int, float, const float*, float*);
+  void (*relu)(long, float*);
 };
 
 Kernel SelectKernel() {
@@ -141,13 +191,13 @@ Kernel SelectKernel() {
   __builtin_cpu_init();
   if ((forced.empty() || forced == "avx512") &&
       __builtin_cpu_supports("avx512f")) {
-    return {&KernelAvx512, 12, 32, "avx512"};
+    return {&KernelAvx512, 12, 32, "avx512", &AxpyAvx512, &ReluAvx2};
   }
   if ((forced.empty() || forced == "avx512" || forced == "avx2") &&
       __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
-    return {&KernelAvx2, 6, 16, "avx2"};
+    return {&KernelAvx2, 6, 16, "avx2", &AxpyAvx2, &ReluAvx2};
   }
-  return {&KernelGeneric, 4, 8, "generic"};
+  return {&KernelGeneric, 4, 8, "generic", &AxpyGeneric, &ReluGeneric};
 }
 
 const Kernel& GetKernel() {
@@ -165,6 +215,17 @@ void PackA(const ConstMatrixView& a,
   for (int i = 0; i < mc; i += mr) {
     const int rows = std::min(mr, mc - i);
     float* panel = dst + static_cast<long>(i) * kc;
+    if (a.col_stride == 1) {
+      // Row-major A (the GCN's activations): read each row contiguously.
+      for (int r = 0; r < rows; ++r) {
+        const float* src = a.data + (i0 + i + r) * a.row_stride + p0;
+        for (int p = 0; p < kc; ++p) panel[p * mr + r] = src[p];
+      }
+      for (int r = rows; r < mr; ++r) {
+        for (int p = 0; p < kc; ++p) panel[p * mr + r] = 0.f;
+      }
+      continue;
+    }
     for (int p = 0; p < kc; ++p) {
       const float* src =
           a.data + (i0 + i) * a.row_stride + (p0 + p) * a.col_stride;
@@ -198,6 +259,50 @@ void PackB(const ConstMatrixView& b, int p0, int kc, int nr, float* dst) {
   }
 }
 
+void ScaleC(int m, int n, float beta, float* c, long ldc) {
+  if (beta == 1.f) return;
+  for (int i = 0; i < m; ++i) {
+    float* row = c + i * ldc;
+    if (beta == 0.f) {
+      std::fill(row, row + n, 0.f);
+    } else {
+      for (int j = 0; j < n; ++j) row[j] *= beta;
+    }
+  }
+}
+
+// C += A[:, p0:p0+kc] * (one packed kc-deep slice of B).
+void MultiplySlice(const ConstMatrixView& a,
+                   int p0,
+                   int kc,
+                   const float* packed_b,
+                   int n,
+                   float* c,
+                   long ldc) {
+  const Kernel& kernel = GetKernel();
+  const int m = a.rows;
+  const int num_panels = (n + kernel.nr - 1) / kernel.nr;
+  thread_local std::vector<float> packed_a;
+  packed_a.resize(static_cast<size_t>(kMc) * kKc);
+  for (int i0 = 0; i0 < m; i0 += kMc) {
+    const int mc = std::min(kMc, m - i0);
+    PackA(a, i0, mc, p0, kc, kernel.mr, packed_a.data());
+    for (int jp = 0; jp < num_panels; ++jp) {
+      const float* bp = packed_b + static_cast<long>(jp) * kc * kernel.nr;
+      const int n_valid = std::min(kernel.nr, n - jp * kernel.nr);
+      for (int i = 0; i < mc; i += kernel.mr) {
+        kernel.fn(kc,
+                  packed_a.data() + static_cast<long>(i) * kc,
+                  bp,
+                  c + (i0 + i) * ldc + jp * kernel.nr,
+                  ldc,
+                  std::min(kernel.mr, mc - i),
+                  n_valid);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void Sgemm(const ConstMatrixView& a,
@@ -209,48 +314,58 @@ void Sgemm(const ConstMatrixView& a,
   const int m = a.rows;
   const int n = b.cols;
   const int k = a.cols;
-  if (beta != 1.f) {
-    for (int i = 0; i < m; ++i) {
-      float* row = c + i * ldc;
-      if (beta == 0.f) {
-        std::fill(row, row + n, 0.f);
-      } else {
-        for (int j = 0; j < n; ++j) row[j] *= beta;
-      }
-    }
-  }
+  ScaleC(m, n, beta, c, ldc);
   if (m == 0 || n == 0 || k == 0) return;
 
   const Kernel& kernel = GetKernel();
   const int num_panels = (n + kernel.nr - 1) / kernel.nr;
-  thread_local std::vector<float> packed_a;
   thread_local std::vector<float> packed_b;
-  packed_a.resize(static_cast<size_t>(kMc) * kKc);
   packed_b.resize(static_cast<size_t>(num_panels) * kernel.nr * kKc);
-
   for (int p0 = 0; p0 < k; p0 += kKc) {
     const int kc = std::min(kKc, k - p0);
     PackB(b, p0, kc, kernel.nr, packed_b.data());
-    for (int i0 = 0; i0 < m; i0 += kMc) {
-      const int mc = std::min(kMc, m - i0);
-      PackA(a, i0, mc, p0, kc, kernel.mr, packed_a.data());
-      for (int jp = 0; jp < num_panels; ++jp) {
-        const float* bp =
-            packed_b.data() + static_cast<long>(jp) * kc * kernel.nr;
-        const int n_valid = std::min(kernel.nr, n - jp * kernel.nr);
-        for (int i = 0; i < mc; i += kernel.mr) {
-          kernel.fn(kc,
-                    packed_a.data() + static_cast<long>(i) * kc,
-                    bp,
-                    c + (i0 + i) * ldc + jp * kernel.nr,
-                    ldc,
-                    std::min(kernel.mr, mc - i),
-                    n_valid);
-        }
-      }
-    }
+    MultiplySlice(a, p0, kc, packed_b.data(), n, c, ldc);
   }
 }
+
+PackedMatrix::PackedMatrix(const ConstMatrixView& b)
+    : rows_(b.rows), cols_(b.cols), nr_(GetKernel().nr) {
+  num_panels_ = (cols_ + nr_ - 1) / nr_;
+  data_.resize(static_cast<size_t>(rows_) * num_panels_ * nr_);
+  for (int p0 = 0; p0 < rows_; p0 += kKc) {
+    PackB(b,
+          p0,
+          std::min(kKc, rows_ - p0),
+          nr_,
+          data_.data() + static_cast<long>(p0) * num_panels_ * nr_);
+  }
+}
+
+const float* PackedMatrix::Slice(int p0) const {
+  return data_.data() + static_cast<long>(p0) * num_panels_ * nr_;
+}
+
+void Sgemm(const ConstMatrixView& a,
+           const PackedMatrix& b,
+           float beta,
+           float* c,
+           long ldc) {
+  THROW_CHECK(a.cols == b.Rows());
+  const int m = a.rows;
+  const int n = b.Cols();
+  const int k = a.cols;
+  ScaleC(m, n, beta, c, ldc);
+  if (m == 0 || n == 0 || k == 0) return;
+  for (int p0 = 0; p0 < k; p0 += kKc) {
+    MultiplySlice(a, p0, std::min(kKc, k - p0), b.Slice(p0), n, c, ldc);
+  }
+}
+
+void Axpy(int n, float w, const float* x, float* y) {
+  GetKernel().axpy(n, w, x, y);
+}
+
+void Relu(long n, float* x) { GetKernel().relu(n, x); }
 
 std::string SgemmKernelName() { return GetKernel().name; }
 

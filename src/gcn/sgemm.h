@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace colmap_gcn {
 
@@ -38,6 +39,43 @@ void Sgemm(const ConstMatrixView& a,
            float beta,
            float* c,
            long ldc);
+
+// B packed once into the kernel's panel layout, for products of many
+// different A with the same B (the GCN's weights): Sgemm(a, b) repacks B on
+// every call, which for a 1024 x 512 weight matrix costs as much memory
+// traffic as a small product. Bit-identical results to Sgemm(a, b).
+class PackedMatrix {
+ public:
+  PackedMatrix() = default;
+  explicit PackedMatrix(const ConstMatrixView& b);
+
+  int Rows() const { return rows_; }
+  int Cols() const { return cols_; }
+  // The packed kKc-deep slice starting at row p0 (a multiple of kKc).
+  const float* Slice(int p0) const;
+
+ private:
+  int rows_ = 0;
+  int cols_ = 0;
+  int num_panels_ = 0;
+  int nr_ = 0;
+  std::vector<float> data_;
+};
+
+// C = A * B + beta * C with a pre-packed B.
+void Sgemm(const ConstMatrixView& a,
+           const PackedMatrix& b,
+           float beta,
+           float* c,
+           long ldc);
+
+// y += w * x over n floats, and x = max(x, 0): the GCN's sparse
+// aggregation and activation, with the same run-time ISA choice as Sgemm
+// (the rest of the project is built for the baseline ISA). Element-wise:
+// independent of the calling thread; equal to the scalar loops up to
+// rounding (the kernels' tails may use FMA).
+void Axpy(int n, float w, const float* x, float* y);
+void Relu(long n, float* x);
 
 // "avx512", "avx2" or "generic": the kernel Sgemm uses on this CPU.
 std::string SgemmKernelName();
