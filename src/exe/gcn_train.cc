@@ -65,6 +65,14 @@ int RunGcnTrain(int argc, char** argv) {
                            "output sizes of the graph convolutions "
                            "(paper / gcn_clustering: 512,512,256,256)");
   manager.AddDefaultOption("GcnTraining.fc_dim", &training.shape.fc_dim);
+  std::string aggregation = "symmetric";
+  manager.AddDefaultOption("GcnTraining.aggregation",
+                           &aggregation,
+                           "symmetric (paper: L^-1/2 A L^-1/2) | row "
+                           "(gcn_clustering: neighbour mean)");
+  manager.AddDefaultOption("GcnTraining.initialization",
+                           &training.initialization,
+                           "xavier | distance_prior (docs/gcn.md)");
   std::string lr_decay_epochs = "2,3";
   manager.AddDefaultOption("GcnTraining.lr_decay_epochs",
                            &lr_decay_epochs,
@@ -88,6 +96,15 @@ int RunGcnTrain(int argc, char** argv) {
   }
   options.vlad.num_threads = training.num_threads;
   training.shape.gcn_dims = ParseIntList(gcn_dims, "--GcnTraining.gcn_dims");
+  if (aggregation == "symmetric") {
+    training.aggregation = GcnAggregation::kSymmetric;
+  } else if (aggregation == "row") {
+    training.aggregation = GcnAggregation::kRowNormalized;
+  } else {
+    ThrowError("--GcnTraining.aggregation must be symmetric or row, got '",
+               aggregation,
+               "'");
+  }
   training.lr_decay_epochs =
       ParseIntList(lr_decay_epochs, "--GcnTraining.lr_decay_epochs");
 

@@ -119,6 +119,24 @@ void AddPredictions(const ColVector<float>& logits,
     if (!predicted && labels[i]) ++stats->false_negatives;
   }
   stats->num_nodes += logits.size();
+  // Average precision of this query (ties broken by node order).
+  std::vector<int> order(logits.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return logits(a) > logits(b);
+  });
+  int hits = 0;
+  double precision_sum = 0;
+  for (size_t rank = 0; rank < order.size(); ++rank) {
+    if (labels[order[rank]]) {
+      ++hits;
+      precision_sum += static_cast<double>(hits) / (rank + 1);
+    }
+  }
+  if (hits > 0) {
+    stats->average_precision_sum += precision_sum / hits;
+    ++stats->num_ranked_queries;
+  }
 }
 
 void Accumulate(const GcnClassificationStats& in, GcnClassificationStats* out) {
@@ -127,6 +145,8 @@ void Accumulate(const GcnClassificationStats& in, GcnClassificationStats* out) {
   out->true_positives += in.true_positives;
   out->false_positives += in.false_positives;
   out->false_negatives += in.false_negatives;
+  out->average_precision_sum += in.average_precision_sum;
+  out->num_ranked_queries += in.num_ranked_queries;
 }
 
 // Forward only; loss is the mean over nodes.
@@ -161,11 +181,12 @@ std::string FormatStats(const GcnClassificationStats& s) {
   char buffer[128];
   std::snprintf(buffer,
                 sizeof(buffer),
-                "loss %.4f P %.3f R %.3f F %.3f",
+                "loss %.4f P %.3f R %.3f F %.3f AP %.3f",
                 s.loss,
                 s.Precision(),
                 s.Recall(),
-                s.F());
+                s.F(),
+                s.MeanAveragePrecision());
   return buffer;
 }
 
@@ -173,6 +194,8 @@ std::string FormatStats(const GcnClassificationStats& s) {
 
 bool GcnTrainingOptions::Check() const {
   return shape.Check() && qes.Check() && test_qes.Check() &&
+         (initialization == "xavier" || initialization == "distance_prior") &&
+         prior_other_scale >= 0 &&
          (optimizer == "sgd" || optimizer == "adam") && learning_rate > 0 &&
          momentum >= 0 && weight_decay >= 0 && batch_size >= 1 &&
          num_epochs >= 1 && lr_decay_factor > 0 && validation_fraction >= 0 &&
@@ -194,6 +217,11 @@ double GcnClassificationStats::F() const {
   const double p = Precision();
   const double r = Recall();
   return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
+}
+
+double GcnClassificationStats::MeanAveragePrecision() const {
+  return num_ranked_queries > 0 ? average_precision_sum / num_ranked_queries
+                                : 0.0;
 }
 
 QesOptions CapQesOptions(const QesOptions& qes, int num_images) {
@@ -282,6 +310,7 @@ GcnModel GcnTrainer::Train(
   GcnShape shape = o.shape;
   shape.input_dim = dim;
   GcnModel model = InitializeGcnModel(shape, o.aggregation, o.seed);
+  const bool prior = o.initialization == "distance_prior";
   BuilderPool pool(prepared, threads);
 
   // Input standardisation from a sample of training subgraphs (the fixed
@@ -312,7 +341,13 @@ GcnModel GcnTrainer::Train(
       square += squares[s];
       count += counts[s];
     }
-    if (count > 0) {
+    if (count > 0 && prior) {
+      // One scale for all dimensions and no shift: the prior's d(v) is then
+      // the L1 distance between the embeddings (up to the scale).
+      const double rms = std::sqrt(square.sum() / (count * dim));
+      model.input_scale.setConstant(rms > 1e-12 ? static_cast<float>(1.0 / rms)
+                                                : 1.f);
+    } else if (count > 0) {
       const Eigen::VectorXd mean = sum / count;
       const Eigen::VectorXd var =
           (square / count - mean.cwiseProduct(mean)).cwiseMax(0.0);
@@ -320,6 +355,38 @@ GcnModel GcnTrainer::Train(
         const double sd = std::sqrt(var(j));
         model.input_shift(j) = static_cast<float>(mean(j));
         model.input_scale(j) = sd > 1e-8 ? static_cast<float>(1.0 / sd) : 1.f;
+      }
+    }
+    if (prior) {
+      InitializeDistancePrior(&model, o.prior_other_scale);
+      // Calibrate: logits of the sampled subgraphs' 1-hop nodes to median 0
+      // and unit standard deviation.
+      std::vector<std::vector<float>> per_sample(sampled.size());
+      ParallelFor(static_cast<int>(sampled.size()), threads, [&](int s, int t) {
+        const GcnGraph<float> graph =
+            MakeSampleGraph(model,
+                            prepared[sampled[s].scene],
+                            sampled[s].query,
+                            &pool.Get(t, sampled[s].scene));
+        const ColVector<float> z = GcnForwardReference(model.params, graph);
+        per_sample[s].assign(z.data(), z.data() + z.size());
+      });
+      std::vector<float> logits;
+      for (const auto& z : per_sample) {
+        logits.insert(logits.end(), z.begin(), z.end());
+      }
+      if (!logits.empty()) {
+        double mean = 0, square_sum = 0;
+        for (const float z : logits) mean += z;
+        mean /= logits.size();
+        for (const float z : logits) square_sum += (z - mean) * (z - mean);
+        const double sd = std::sqrt(square_sum / logits.size());
+        std::nth_element(
+            logits.begin(), logits.begin() + logits.size() / 2, logits.end());
+        const double median = logits[logits.size() / 2];
+        const float scale = sd > 1e-12 ? static_cast<float>(1.0 / sd) : 1.f;
+        model.params.Fc2Weight() *= scale;
+        model.params.Fc2Bias() = static_cast<float>(-median * scale);
       }
     }
   }
@@ -364,9 +431,22 @@ GcnModel GcnTrainer::Train(
   std::vector<double> grad(params.size());
 
   GcnModel best_model = model;
-  double best_f = -1;
+  double best_ap = -1;
   int best_epoch = -1;
   int epochs_without_improvement = 0;
+  if (prior && !val_samples.empty()) {
+    // The starting point is a candidate model too.
+    const GcnClassificationStats initial = EvaluateSamples(model,
+                                                           prepared,
+                                                           val_samples,
+                                                           positive_weight,
+                                                           o.threshold,
+                                                           threads,
+                                                           &pool);
+    best_ap = initial.MeanAveragePrecision();
+    best_epoch = 0;
+    log("epoch 0 (distance prior) | val " + FormatStats(initial));
+  }
   double lr = o.learning_rate;
   for (int epoch = 0; epoch < o.num_epochs; ++epoch) {
     Timer timer;
@@ -452,7 +532,7 @@ GcnModel GcnTrainer::Train(
                                          o.threshold,
                                          threads,
                                          &pool);
-      improved = stats.validation.F() > best_f + 1e-12;
+      improved = stats.validation.MeanAveragePrecision() > best_ap + 1e-12;
     }
     stats.seconds = timer.ElapsedSeconds();
     history_.push_back(stats);
@@ -468,13 +548,14 @@ GcnModel GcnTrainer::Train(
       log(line.str());
     }
     if (improved) {
-      best_f = val_samples.empty() ? -1 : stats.validation.F();
+      best_ap =
+          val_samples.empty() ? -1 : stats.validation.MeanAveragePrecision();
       best_model = model;
       best_epoch = epoch + 1;
       epochs_without_improvement = 0;
     } else if (o.early_stopping_patience > 0 &&
                ++epochs_without_improvement >= o.early_stopping_patience) {
-      log("early stopping: no better validation F for " +
+      log("early stopping: no better validation AP for " +
           std::to_string(o.early_stopping_patience) + " epoch(s)");
       break;
     }
@@ -503,7 +584,8 @@ GcnModel GcnTrainer::Train(
           << GcnAggregationName(o.aggregation) << " aggregation; "
           << o.optimizer << " lr " << o.learning_rate << ", batch "
           << o.batch_size << ", positive weight " << positive_weight
-          << ", seed " << o.seed << "; " << train_samples.size() << " train / "
+          << ", seed " << o.seed << "; " << o.initialization
+          << " initialisation; " << train_samples.size() << " train / "
           << val_samples.size() << " val subgraphs; best epoch " << best_epoch
           << " of " << history_.size();
     if (best_epoch > 0 && !val_samples.empty()) {

@@ -29,6 +29,16 @@ struct GcnTrainingOptions {
   GcnShape shape;
   GcnAggregation aggregation = GcnAggregation::kSymmetric;
 
+  // "xavier" (gcn_clustering's random start) or "distance_prior": start
+  // from the context-aware distance classifier (InitializeDistancePrior)
+  // with one global input scale instead of per-dimension standardisation,
+  // its output calibrated to median 0 / unit spread on the training
+  // subgraphs, and the starting point evaluated as "epoch 0" (kept when no
+  // epoch beats it on validation).
+  std::string initialization = "xavier";
+  // Scale of the Xavier weights of the units the prior does not use.
+  float prior_other_scale = 0.1f;
+
   // QES used for the training samples (paper: k1 = 100, k2 = 5, u = 10).
   QesOptions qes{100, 5, 10};
 
@@ -55,8 +65,9 @@ struct GcnTrainingOptions {
   // Fraction of the (scene, query) samples held out for validation when no
   // validation scenes are given.
   double validation_fraction = 0.1;
-  // Stop after this many epochs without a better validation F (0 = never);
-  // the best model (by validation F) is returned.
+  // Stop after this many epochs without a better validation mean average
+  // precision (0 = never); the best model by it is returned. Ranking, not F
+  // at a fixed threshold: the decision threshold is chosen afterwards.
   int early_stopping_patience = 2;
   // Random subset of the training samples per epoch (-1 = all).
   int max_samples_per_epoch = -1;
@@ -86,9 +97,14 @@ struct GcnClassificationStats {
   int64_t true_positives = 0;
   int64_t false_positives = 0;
   int64_t false_negatives = 0;
+  // Average precision of each query's 1-hop nodes ranked by logit, summed
+  // over the queries with at least one matchable node (threshold free).
+  double average_precision_sum = 0;
+  int64_t num_ranked_queries = 0;
   double Precision() const;
   double Recall() const;
   double F() const;
+  double MeanAveragePrecision() const;
 };
 
 struct GcnEpochStats {

@@ -24,6 +24,12 @@ std::string Scores(const PairSetScores& scores) {
   return text;
 }
 
+std::string Fixed3(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f", value);
+  return text;
+}
+
 // Mean precision, recall and F of one pair set per scene.
 GcnSensitivityPoint MeanScores(
     const std::vector<GcnTrainingScene>& scenes,
@@ -77,8 +83,13 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
                                    int num_threads) {
   FixedKComparison result;
   result.scene = scene.name;
+  const std::vector<ScoredRowPair> candidates =
+      GcnCandidatePairs(model, scene, num_threads);
   result.gcn =
-      ScorePairSet(GcnRetrievedPairs(model, scene, num_threads), scene);
+      ScorePairSet(PairsAtThreshold(candidates, model.info.threshold), scene);
+  result.gcn_ap = RankedAveragePrecision(RankByScore(candidates), scene);
+  result.similarity_ap = RankedAveragePrecision(
+      RankBySimilarity(candidates, scene.embeddings), scene);
   result.equal = ScorePairSet(
       MostSimilarPairs(scene.embeddings, result.gcn.num_pairs), scene);
   const int n = static_cast<int>(scene.embeddings.rows());
@@ -123,18 +134,24 @@ std::string FormatFixedKComparison(
          "smallest per-image k with at least as many pairs; best k = the "
          "per-image k with the highest F (chosen with the labels: an upper "
          "bound for any fixed k).\n\n"
+      << "AP: average precision of the GCN's candidate pairs (every "
+         "QES's 1-hop nodes) ranked by GCN score and by embedding "
+         "similarity.\n\n"
       << "| scene | pairs | matchable | GCN P | R | F | kNN= P | R | F | "
-         "top-k= k | P | R | F | best k | P | R | F |\n"
+         "top-k= k | P | R | F | best k | P | R | F | AP GCN | AP sim |\n"
       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-         "---:|---:|---:|---:|\n";
-  double gcn = 0, equal = 0, top_k = 0, best = 0;
+         "---:|---:|---:|---:|---:|---:|\n";
+  double gcn = 0, equal = 0, top_k = 0, best = 0, gcn_ap = 0, sim_ap = 0;
   int gcn_wins = 0;
   for (const auto& c : comparisons) {
     out << "| " << c.scene << " | " << c.gcn.num_pairs << " | "
         << c.gcn.num_positives << " | " << Scores(c.gcn) << " | "
         << Scores(c.equal) << " | " << c.equal_k << " | "
         << Scores(c.top_k_equal) << " | " << c.best_k << " | "
-        << Scores(c.top_k_best) << " |\n";
+        << Scores(c.top_k_best) << " | " << Fixed3(c.gcn_ap) << " | "
+        << Fixed3(c.similarity_ap) << " |\n";
+    gcn_ap += c.gcn_ap;
+    sim_ap += c.similarity_ap;
     gcn += c.gcn.F();
     equal += c.equal.F();
     top_k += c.top_k_equal.F();
@@ -151,6 +168,8 @@ std::string FormatFixedKComparison(
                 best / n);
   out << "\nMean F: GCN " << line << "; GCN F >= best-k F on " << gcn_wins
       << " of " << comparisons.size() << " scenes.\n";
+  out << "Mean AP: GCN " << Fixed3(gcn_ap / n) << ", similarity "
+      << Fixed3(sim_ap / n) << ".\n";
   return out.str();
 }
 

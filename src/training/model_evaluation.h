@@ -26,6 +26,10 @@ struct FixedKComparison {
   PairSetScores top_k_equal;
   int best_k = 0;  // per-image k in [1, max_k] with the best F
   PairSetScores top_k_best;
+  // Ranking of the GCN's candidate pairs (the 1-hop nodes of every QES):
+  // average precision by GCN score and by embedding similarity.
+  double gcn_ap = 0;
+  double similarity_ap = 0;
 };
 
 FixedKComparison CompareWithFixedK(const GcnModel& model,

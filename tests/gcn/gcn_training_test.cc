@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "gcn/gcn_inference.h"
+#include "gcn/gcn_network.h"
 #include "gcn/gcn_test_utils.h"
 #include "util/error.h"
 
@@ -140,6 +141,79 @@ TEST(GcnTrainer, LearnsClustersBetterThanFixedKnn) {
       << gcn.F() << " vs kNN k=" << k << " F " << knn_f;
   EXPECT_GT(gcn.F(), 0.8);
   EXPECT_NE(model.info.notes.find("6 scene(s)"), std::string::npos);
+}
+
+TEST(DistancePrior, NetworkComputesContextDistance) {
+  // D = 8, layer 1 of 2 D = 16 units, four graph convolutions.
+  GcnShape shape;
+  shape.input_dim = 8;
+  shape.gcn_dims = {16, 12, 8, 8};
+  shape.fc_dim = 6;
+  GcnModel model = InitializeGcnModel(shape, GcnAggregation::kRowNormalized, 3);
+  InitializeDistancePrior(&model, 0.1f);
+  std::vector<int> clusters;
+  const EmbeddingMatrix embeddings =
+      test::ClusteredEmbeddings({6, 5, 7}, 8, 0.3f, 4, &clusters);
+  const KnnGraph knn = test::BruteForceKnn(embeddings, 10);
+  for (const int q : {0, 7, 15}) {
+    const QuerySubgraph subgraph = BuildQuerySubgraph(knn, q, {6, 3, 3});
+    const GcnGraph<float> graph = MakeGcnGraph(model, subgraph, embeddings);
+    const Eigen::MatrixXf g = graph.aggregation.Dense();
+    // d = mean |x_v - x_q| over the dimensions; expected logit
+    // -(d + G d + G^2 d + G^3 d).
+    Eigen::VectorXf d = graph.features.cwiseAbs().rowwise().mean();
+    Eigen::VectorXf expected = d;
+    Eigen::VectorXf hop = d;
+    for (int h = 1; h < 4; ++h) {
+      hop = g * hop;
+      expected += hop;
+    }
+    const ColVector<float> logits = GcnForwardReference(model.params, graph);
+    ASSERT_EQ(logits.size(), subgraph.num_one_hop);
+    for (int i = 0; i < subgraph.num_one_hop; ++i) {
+      EXPECT_NEAR(logits(i), -expected(i), 1e-4f)
+          << "query " << q << " node " << i;
+    }
+  }
+  // Too narrow a first layer for 2 D units.
+  shape.gcn_dims = {12, 12, 8, 8};
+  GcnModel narrow =
+      InitializeGcnModel(shape, GcnAggregation::kRowNormalized, 3);
+  EXPECT_THROW(InitializeDistancePrior(&narrow, 0.1f), Error);
+}
+
+TEST(GcnTrainer, DistancePriorIsTheStartAndAKeptCandidate) {
+  const std::vector<GcnTrainingScene> train = {MakeScene(11, "a"),
+                                               MakeScene(12, "b")};
+  const std::vector<GcnTrainingScene> val = {MakeScene(20, "v")};
+  GcnTrainingOptions options = SmallOptions();
+  options.shape.gcn_dims = {32, 16, 16, 16};
+  options.aggregation = GcnAggregation::kRowNormalized;
+  options.initialization = "distance_prior";
+  options.num_epochs = 2;
+  options.learning_rate = 1e-30;  // below float resolution: no epoch can
+                                  // beat the start
+  options.weight_decay = 0;
+  std::vector<std::string> lines;
+  options.log = [&lines](const std::string& line) { lines.push_back(line); };
+  GcnTrainer trainer(options);
+  const GcnModel model = trainer.Train(train, val);
+  ASSERT_GE(lines.size(), 2u);
+  EXPECT_NE(lines[1].find("epoch 0 (distance prior)"), std::string::npos)
+      << lines[1];
+  EXPECT_NE(model.info.notes.find("best epoch 0"), std::string::npos)
+      << model.info.notes;
+  // One global input scale, no shift.
+  EXPECT_EQ(model.input_shift, Eigen::VectorXf::Zero(16));
+  EXPECT_EQ(model.input_scale,
+            Eigen::VectorXf::Constant(16, model.input_scale(0)));
+  // The prior ranks the held-out scene's candidates at least as well as the
+  // embedding distance (it is distance plus neighbourhood context).
+  const GcnClassificationStats stats =
+      EvaluateGcn(model, {MakeScene(30, "test")}, options.test_qes, 0.5f, 2);
+  EXPECT_GT(stats.MeanAveragePrecision(), 0.5);
+  options.initialization = "bogus";
+  EXPECT_THROW(GcnTrainer(options).Train(train, val), Error);
 }
 
 TEST(GcnTrainer, RejectsBadInput) {
