@@ -96,6 +96,14 @@ int RunGcnTrain(int argc, char** argv) {
   }
   options.vlad.num_threads = training.num_threads;
   training.shape.gcn_dims = ParseIntList(gcn_dims, "--GcnTraining.gcn_dims");
+  if (training.initialization != "xavier" &&
+      training.initialization != "distance_prior") {
+    ThrowError(
+        "--GcnTraining.initialization must be xavier or distance_prior, got "
+        "'",
+        training.initialization,
+        "'");
+  }
   if (aggregation == "symmetric") {
     training.aggregation = GcnAggregation::kSymmetric;
   } else if (aggregation == "row") {
