@@ -119,22 +119,10 @@ void AddPredictions(const ColVector<float>& logits,
     if (!predicted && labels[i]) ++stats->false_negatives;
   }
   stats->num_nodes += logits.size();
-  // Average precision of this query (ties broken by node order).
-  std::vector<int> order(logits.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return logits(a) > logits(b);
-  });
-  int hits = 0;
-  double precision_sum = 0;
-  for (size_t rank = 0; rank < order.size(); ++rank) {
-    if (labels[order[rank]]) {
-      ++hits;
-      precision_sum += static_cast<double>(hits) / (rank + 1);
-    }
-  }
-  if (hits > 0) {
-    stats->average_precision_sum += precision_sum / hits;
+  if (std::find(labels.begin(), labels.end(), 1) != labels.end()) {
+    stats->average_precision_sum += AveragePrecision(
+        std::vector<float>(logits.data(), logits.data() + logits.size()),
+        labels);
     ++stats->num_ranked_queries;
   }
 }
@@ -217,6 +205,25 @@ double GcnClassificationStats::F() const {
   const double p = Precision();
   const double r = Recall();
   return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
+}
+
+double AveragePrecision(const std::vector<float>& scores,
+                        const std::vector<uint8_t>& relevant) {
+  THROW_CHECK(scores.size() == relevant.size());
+  std::vector<int> order(scores.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return scores[a] > scores[b];
+  });
+  int64_t hits = 0;
+  double precision_sum = 0;
+  for (size_t rank = 0; rank < order.size(); ++rank) {
+    if (relevant[order[rank]]) {
+      ++hits;
+      precision_sum += static_cast<double>(hits) / (rank + 1);
+    }
+  }
+  return hits > 0 ? precision_sum / hits : 0.0;
 }
 
 double GcnClassificationStats::MeanAveragePrecision() const {
@@ -434,15 +441,18 @@ GcnModel GcnTrainer::Train(
   double best_ap = -1;
   int best_epoch = -1;
   int epochs_without_improvement = 0;
+  auto validate = [&]() {
+    return EvaluateSamples(model,
+                           prepared,
+                           val_samples,
+                           positive_weight,
+                           o.threshold,
+                           threads,
+                           &pool);
+  };
   if (prior && !val_samples.empty()) {
     // The starting point is a candidate model too.
-    const GcnClassificationStats initial = EvaluateSamples(model,
-                                                           prepared,
-                                                           val_samples,
-                                                           positive_weight,
-                                                           o.threshold,
-                                                           threads,
-                                                           &pool);
+    const GcnClassificationStats initial = validate();
     best_ap = initial.MeanAveragePrecision();
     best_epoch = 0;
     log("epoch 0 (distance prior) | val " + FormatStats(initial));
@@ -525,13 +535,7 @@ GcnModel GcnTrainer::Train(
 
     bool improved = true;
     if (!val_samples.empty()) {
-      stats.validation = EvaluateSamples(model,
-                                         prepared,
-                                         val_samples,
-                                         positive_weight,
-                                         o.threshold,
-                                         threads,
-                                         &pool);
+      stats.validation = validate();
       improved = stats.validation.MeanAveragePrecision() > best_ap + 1e-12;
     }
     stats.seconds = timer.ElapsedSeconds();

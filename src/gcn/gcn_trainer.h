@@ -132,6 +132,12 @@ class GcnTrainer {
   std::vector<GcnEpochStats> history_;
 };
 
+// Average precision of items ranked by score (highest first, ties in item
+// order): the mean over relevant items of the precision at their rank; 0
+// without relevant items. scores and relevant have the same size.
+double AveragePrecision(const std::vector<float>& scores,
+                        const std::vector<uint8_t>& relevant);
+
 // Classification statistics of a model on the 1-hop nodes of every query of
 // the scenes (QES from `qes`), e.g. for held-out evaluation.
 GcnClassificationStats EvaluateGcn(const GcnModel& model,

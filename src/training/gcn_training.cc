@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <numeric>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -287,59 +286,19 @@ std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
   return candidates;
 }
 
-double RankedAveragePrecision(const std::vector<std::pair<int, int>>& ranked,
-                              const GcnTrainingScene& scene) {
+std::vector<uint8_t> MatchableFlags(
+    const std::vector<ScoredRowPair>& candidates,
+    const GcnTrainingScene& scene) {
   std::unordered_set<uint64_t> positives;
   for (const auto& [i, j] : scene.positive_pairs) {
     positives.insert(PairKey(i, j));
   }
-  int64_t hits = 0;
-  double precision_sum = 0;
-  for (size_t rank = 0; rank < ranked.size(); ++rank) {
-    if (positives.count(PairKey(ranked[rank].first, ranked[rank].second))) {
-      ++hits;
-      precision_sum += static_cast<double>(hits) / (rank + 1);
-    }
-  }
-  return hits > 0 ? precision_sum / hits : 0.0;
-}
-
-namespace {
-
-std::vector<std::pair<int, int>> RankByKey(
-    const std::vector<ScoredRowPair>& candidates,
-    const std::vector<float>& keys) {
-  std::vector<int> order(candidates.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return keys[a] > keys[b];
-  });
-  std::vector<std::pair<int, int>> ranked;
-  ranked.reserve(order.size());
-  for (const int c : order) {
-    ranked.emplace_back(candidates[c].row1, candidates[c].row2);
-  }
-  return ranked;
-}
-
-}  // namespace
-
-std::vector<std::pair<int, int>> RankByScore(
-    const std::vector<ScoredRowPair>& candidates) {
-  std::vector<float> keys;
-  for (const auto& candidate : candidates) keys.push_back(candidate.score);
-  return RankByKey(candidates, keys);
-}
-
-std::vector<std::pair<int, int>> RankBySimilarity(
-    const std::vector<ScoredRowPair>& candidates,
-    const EmbeddingMatrix& embeddings) {
-  std::vector<float> keys;
+  std::vector<uint8_t> flags;
+  flags.reserve(candidates.size());
   for (const auto& candidate : candidates) {
-    keys.push_back(
-        embeddings.row(candidate.row1).dot(embeddings.row(candidate.row2)));
+    flags.push_back(positives.count(PairKey(candidate.row1, candidate.row2)));
   }
-  return RankByKey(candidates, keys);
+  return flags;
 }
 
 std::vector<std::pair<int, int>> PairsAtThreshold(

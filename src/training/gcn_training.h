@@ -96,19 +96,11 @@ std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
                                              const GcnTrainingScene& scene,
                                              int num_threads);
 
-// Average precision of pairs in ranked order (best first) against the
-// scene's matchable pairs, over the ranked pairs only: it measures how well
-// a score orders a fixed candidate set, at every number of pairs at once.
-double RankedAveragePrecision(const std::vector<std::pair<int, int>>& ranked,
-                              const GcnTrainingScene& scene);
-
-// The candidates in the order of their GCN score, and in the order of their
-// embedding similarity (ties: pair order), for RankedAveragePrecision.
-std::vector<std::pair<int, int>> RankByScore(
-    const std::vector<ScoredRowPair>& candidates);
-std::vector<std::pair<int, int>> RankBySimilarity(
+// 1 for the candidates that are matchable pairs of the scene, else 0 (for
+// AveragePrecision over the candidates).
+std::vector<uint8_t> MatchableFlags(
     const std::vector<ScoredRowPair>& candidates,
-    const EmbeddingMatrix& embeddings);
+    const GcnTrainingScene& scene);
 
 // The candidates a threshold keeps (as GcnPairGenerator does).
 std::vector<std::pair<int, int>> PairsAtThreshold(

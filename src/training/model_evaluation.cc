@@ -87,9 +87,16 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
       GcnCandidatePairs(model, scene, num_threads);
   result.gcn =
       ScorePairSet(PairsAtThreshold(candidates, model.info.threshold), scene);
-  result.gcn_ap = RankedAveragePrecision(RankByScore(candidates), scene);
-  result.similarity_ap = RankedAveragePrecision(
-      RankBySimilarity(candidates, scene.embeddings), scene);
+  const std::vector<uint8_t> matchable = MatchableFlags(candidates, scene);
+  std::vector<float> scores;
+  std::vector<float> similarities;
+  for (const auto& candidate : candidates) {
+    scores.push_back(candidate.score);
+    similarities.push_back(scene.embeddings.row(candidate.row1)
+                               .dot(scene.embeddings.row(candidate.row2)));
+  }
+  result.gcn_ap = AveragePrecision(scores, matchable);
+  result.similarity_ap = AveragePrecision(similarities, matchable);
   result.equal = ScorePairSet(
       MostSimilarPairs(scene.embeddings, result.gcn.num_pairs), scene);
   const int n = static_cast<int>(scene.embeddings.rows());
