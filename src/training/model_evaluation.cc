@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -13,21 +12,15 @@
 namespace colmap_gcn {
 namespace {
 
-std::string Scores(const PairSetScores& scores) {
-  char text[64];
-  std::snprintf(text,
-                sizeof(text),
-                "%.3f | %.3f | %.3f",
-                scores.Precision(),
-                scores.Recall(),
-                scores.F());
-  return text;
-}
-
 std::string Fixed3(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.3f", value);
   return text;
+}
+
+std::string Scores(const PairSetScores& scores) {
+  return Fixed3(scores.Precision()) + " | " + Fixed3(scores.Recall()) + " | " +
+         Fixed3(scores.F());
 }
 
 // Mean precision, recall and F of one pair set per scene.
@@ -233,9 +226,7 @@ void WriteGcnSensitivity(const std::vector<GcnSensitivityPoint>& points,
                          const std::string& title,
                          const std::string& dir) {
   CreateDirIfNotExists(dir);
-  const std::string csv_path = JoinPaths(dir, "sensitivity.csv");
-  std::ofstream csv(csv_path);
-  if (!csv) ThrowError("cannot write ", csv_path);
+  std::ostringstream csv;
   csv << "parameter,value,precision,recall,f,pairs_per_image\n";
   std::map<std::string, std::vector<const GcnSensitivityPoint*>> by_parameter;
   for (const auto& point : points) {
@@ -244,7 +235,7 @@ void WriteGcnSensitivity(const std::vector<GcnSensitivityPoint>& points,
         << "\n";
     by_parameter[point.parameter].push_back(&point);
   }
-  if (!csv) ThrowError("cannot write ", csv_path);
+  WriteFileAtomically(JoinPaths(dir, "sensitivity.csv"), csv.str());
   for (const auto& [parameter, series] : by_parameter) {
     std::vector<double> x;
     LinePlotSeries precision{"precision", {}, false};
