@@ -10,6 +10,11 @@
 # folder (default: build); SHARED the shared datasets folder (default:
 # ../shared/datasets). Methods not available in this build are reported as
 # such. Run scripts/build.sh first.
+#
+# The ambiguous real scenes (books, cereal, oats, street) have no ground
+# truth of their own: scripts/ambiguous_references.sh builds stand-in GT
+# cameras for them into AMBIGUOUS (default ambiguous-scenes/), and they are
+# benchmarked when that has been run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT="${1:-benchmark-out}"
@@ -23,6 +28,15 @@ for scene in fountain-P11 entry-P10 temple-sparse-ring dino-sparse-ring; do
     DATASETS="$DATASETS${DATASETS:+,}$SHARED/$scene"
   else
     echo "benchmark_all: $SHARED/$scene not found, skipped" >&2
+  fi
+done
+AMBIGUOUS="${AMBIGUOUS:-ambiguous-scenes}"
+for scene in books cereal oats street; do
+  if [ -f "$AMBIGUOUS/$scene/gt/images.txt" ]; then
+    DATASETS="$DATASETS${DATASETS:+,}$AMBIGUOUS/$scene"
+  else
+    echo "benchmark_all: $AMBIGUOUS/$scene/gt not found (run" \
+      "scripts/ambiguous_references.sh), skipped" >&2
   fi
 done
 DATASETS="$DATASETS${DATASETS:+,}synth:ordinary:24:1,synth:repetitive:24:1,synth:symmetric:24:1"
