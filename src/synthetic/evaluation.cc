@@ -1,13 +1,12 @@
 #include "synthetic/evaluation.h"
 
-#include <sqlite3.h>
-
 #include <algorithm>
 #include <map>
 #include <set>
 
 #include <Eigen/Geometry>
 
+#include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
 
@@ -95,58 +94,26 @@ bool TwoViewGeometryRow::IsVerified(int min_num_inliers) const {
 
 std::vector<TwoViewGeometryRow> ReadTwoViewGeometries(
     const std::string& database_path) {
-  if (!ExistsFile(database_path)) {
-    ThrowError("database ", database_path, " does not exist");
+  const Database database(database_path);
+  std::map<image_t, std::string> names;
+  for (const DatabaseImage& image : database.ReadAllImages()) {
+    names[image.image_id] = image.name;
   }
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(
-          database_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) !=
-      SQLITE_OK) {
-    const std::string message = db ? sqlite3_errmsg(db) : "out of memory";
-    sqlite3_close(db);
-    ThrowError("cannot open database ", database_path, ": ", message);
-  }
-  auto fail = [&](const std::string& what) {
-    const std::string message = sqlite3_errmsg(db);
-    sqlite3_close(db);
-    ThrowError("cannot read ", what, " from ", database_path, ": ", message);
+  auto name_of = [&names](image_t image_id) {
+    const auto it = names.find(image_id);
+    return it == names.end() ? std::string() : it->second;
   };
-  std::map<int64_t, std::string> names;
-  sqlite3_stmt* stmt = nullptr;
-  if (sqlite3_prepare_v2(
-          db, "SELECT image_id, name FROM images;", -1, &stmt, nullptr) !=
-      SQLITE_OK) {
-    fail("images");
-  }
-  while (sqlite3_step(stmt) == SQLITE_ROW) {
-    const unsigned char* name = sqlite3_column_text(stmt, 1);
-    names[sqlite3_column_int64(stmt, 0)] =
-        name ? reinterpret_cast<const char*>(name) : "";
-  }
-  sqlite3_finalize(stmt);
-  if (sqlite3_prepare_v2(db,
-                         "SELECT pair_id, rows, config FROM "
-                         "two_view_geometries;",
-                         -1,
-                         &stmt,
-                         nullptr) != SQLITE_OK) {
-    fail("two_view_geometries");
-  }
   std::vector<TwoViewGeometryRow> rows;
-  const int64_t kMaxNumImages = 2147483647;
-  while (sqlite3_step(stmt) == SQLITE_ROW) {
-    const int64_t pair_id = sqlite3_column_int64(stmt, 0);
-    const int64_t id2 = pair_id % kMaxNumImages;
-    const int64_t id1 = (pair_id - id2) / kMaxNumImages;
+  for (const TwoViewGeometryInfo& info :
+       database.ReadTwoViewGeometryInfos()) {
+    const ImagePair pair = PairIdToImagePair(info.pair_id);
     TwoViewGeometryRow row;
-    row.name1 = names.count(id1) ? names[id1] : "";
-    row.name2 = names.count(id2) ? names[id2] : "";
-    row.num_inliers = sqlite3_column_int(stmt, 1);
-    row.config = sqlite3_column_int(stmt, 2);
+    row.name1 = name_of(pair.first);
+    row.name2 = name_of(pair.second);
+    row.num_inliers = static_cast<int>(info.num_inliers);
+    row.config = info.config;
     rows.push_back(row);
   }
-  sqlite3_finalize(stmt);
-  sqlite3_close(db);
   return rows;
 }
 
