@@ -104,8 +104,7 @@ std::vector<TwoViewGeometryRow> ReadTwoViewGeometries(
     return it == names.end() ? std::string() : it->second;
   };
   std::vector<TwoViewGeometryRow> rows;
-  for (const TwoViewGeometryInfo& info :
-       database.ReadTwoViewGeometryInfos()) {
+  for (const TwoViewGeometryInfo& info : database.ReadTwoViewGeometryInfos()) {
     const ImagePair pair = PairIdToImagePair(info.pair_id);
     TwoViewGeometryRow row;
     row.name1 = name_of(pair.first);
