@@ -26,8 +26,8 @@
 #include "gcn/gcn_network.h"
 #include "gcn/gcn_pair_generator.h"
 #include "gcn/gcn_trainer.h"
-#include "gcn/sgemm.h"
 #include "gcn_benchmark_data.h"
+#include "math/sgemm.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {

@@ -10,8 +10,8 @@
 #include <cstring>
 
 #include "gcn/gcn_trainer.h"
-#include "gcn/sgemm.h"
 #include "gcn_benchmark_data.h"
+#include "math/sgemm.h"
 #include "util/timer.h"
 
 int main(int argc, char** argv) {

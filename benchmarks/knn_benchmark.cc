@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "retrieval/dense_product.h"
+#include "math/dense_product.h"
 #include "retrieval/knn.h"
 #include "retrieval/vlad.h"
 #include "util/timer.h"

@@ -6,7 +6,7 @@
 #include <exception>
 #include <thread>
 
-#include "gcn/sgemm.h"
+#include "math/sgemm.h"
 #include "util/error.h"
 
 namespace colmap_gcn {

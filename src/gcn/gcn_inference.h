@@ -6,7 +6,7 @@
 
 #include "gcn/gcn_model.h"
 #include "gcn/query_enclosing_subgraph.h"
-#include "gcn/sgemm.h"
+#include "math/sgemm.h"
 #include "retrieval/knn.h"
 
 namespace colmap_gcn {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gcn/sgemm.h"
+#include "math/sgemm.h"
 #include "util/error.h"
 
 namespace colmap_gcn {

@@ -19,6 +19,9 @@ struct GcnTrainingScene {
   std::string name;
   EmbeddingMatrix embeddings;
   std::vector<std::pair<int, int>> positive_pairs;
+  // Labelled pairs whose images share nothing (no surface, no 3D point): a
+  // match between them can only be wrong. Evaluation only; may be empty.
+  std::vector<std::pair<int, int>> unrelated_pairs;
 };
 
 // Prints the line to stdout (the default training log).

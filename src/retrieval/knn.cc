@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "retrieval/dense_product.h"
+#include "math/dense_product.h"
 #include "util/error.h"
 
 namespace colmap_gcn {

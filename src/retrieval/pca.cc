@@ -5,7 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "retrieval/dense_product.h"
+#include "math/dense_product.h"
 #include "util/error.h"
 
 namespace colmap_gcn {

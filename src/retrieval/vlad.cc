@@ -5,7 +5,7 @@
 #include <iostream>
 #include <thread>
 
-#include "retrieval/dense_product.h"
+#include "math/dense_product.h"
 #include "retrieval/hash.h"
 #include "retrieval/knn.h"
 #include "util/error.h"

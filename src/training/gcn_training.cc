@@ -102,6 +102,18 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
       training_scene.positive_pairs.emplace_back(it1->second, it2->second);
     }
   }
+  std::vector<std::pair<std::string, int>> rows(row_of_name.begin(),
+                                                row_of_name.end());
+  std::sort(rows.begin(), rows.end());
+  for (size_t a = 0; a < rows.size(); ++a) {
+    for (size_t b = a + 1; b < rows.size(); ++b) {
+      if (labels.IsLabelled(rows[a].first, rows[b].first) &&
+          labels.SharesNothing(rows[a].first, rows[b].first)) {
+        training_scene.unrelated_pairs.emplace_back(rows[a].second,
+                                                    rows[b].second);
+      }
+    }
+  }
   return training_scene;
 }
 
@@ -208,11 +220,16 @@ PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
   for (const auto& [i, j] : pairs) {
     if (i != j) selected.insert(PairKey(i, j));
   }
+  std::unordered_set<uint64_t> unrelated;
+  for (const auto& [i, j] : scene.unrelated_pairs) {
+    unrelated.insert(PairKey(i, j));
+  }
   PairSetScores scores;
   scores.num_pairs = selected.size();
   scores.num_positives = positives.size();
   for (const uint64_t key : selected) {
     scores.num_true_positives += positives.count(key);
+    scores.num_unrelated += unrelated.count(key);
   }
   return scores;
 }

@@ -63,6 +63,8 @@ struct PairSetScores {
   size_t num_pairs = 0;
   size_t num_true_positives = 0;
   size_t num_positives = 0;  // matchable pairs in the scene
+  // Selected pairs among the scene's unrelated_pairs (wrong pairs).
+  size_t num_unrelated = 0;
   double Precision() const;
   double Recall() const;
   double F() const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "evaluation/figures.h"
@@ -76,6 +77,7 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
                                    int num_threads) {
   FixedKComparison result;
   result.scene = scene.name;
+  result.num_unrelated_pairs = scene.unrelated_pairs.size();
   const std::vector<ScoredRowPair> candidates =
       GcnCandidatePairs(model, scene, num_threads);
   result.gcn =
@@ -90,9 +92,26 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
   }
   result.gcn_ap = AveragePrecision(scores, matchable);
   result.similarity_ap = AveragePrecision(similarities, matchable);
-  result.equal = ScorePairSet(
-      MostSimilarPairs(scene.embeddings, result.gcn.num_pairs), scene);
   const int n = static_cast<int>(scene.embeddings.rows());
+  std::vector<std::pair<int, int>> by_similarity = MostSimilarPairs(
+      scene.embeddings, static_cast<size_t>(n) * std::max(n - 1, 0) / 2);
+  result.equal =
+      ScorePairSet({by_similarity.begin(),
+                    by_similarity.begin() +
+                        std::min(by_similarity.size(), result.gcn.num_pairs)},
+                   scene);
+  std::set<std::pair<int, int>> positives;
+  for (const auto& [i, j] : scene.positive_pairs) {
+    positives.emplace(std::min(i, j), std::max(i, j));
+  }
+  size_t prefix = 0;
+  for (size_t found = 0;
+       prefix < by_similarity.size() && found < result.gcn.num_true_positives;
+       ++prefix) {
+    found += positives.count(by_similarity[prefix]);  // i < j
+  }
+  by_similarity.resize(prefix);
+  result.equal_recall = ScorePairSet(by_similarity, scene);
   if (n < 2) return result;
   KnnOptions knn_options;
   knn_options.k = std::min(max_k, n - 1);
@@ -170,6 +189,30 @@ std::string FormatFixedKComparison(
       << " of " << comparisons.size() << " scenes.\n";
   out << "Mean AP: GCN " << Fixed3(gcn_ap / n) << ", similarity "
       << Fixed3(sim_ap / n) << ".\n";
+
+  // Wrong pairs: what folds models on ambiguous scenes. kNN@R is the
+  // fewest most-similar pairs with the GCN's recall.
+  out << "\nWrong pairs (labelled pairs whose images share nothing) admitted "
+         "by the GCN and by kNN at equal recall (kNN@R: the fewest most "
+         "similar pairs with at least the GCN's true positives).\n\n"
+      << "| scene | unrelated pairs | GCN pairs | R | wrong | kNN@R pairs "
+         "| R | wrong |\n"
+      << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  size_t gcn_wrong = 0, knn_wrong = 0;
+  int fewer = 0;
+  for (const auto& c : comparisons) {
+    out << "| " << c.scene << " | " << c.num_unrelated_pairs << " | "
+        << c.gcn.num_pairs << " | " << Fixed3(c.gcn.Recall()) << " | "
+        << c.gcn.num_unrelated << " | " << c.equal_recall.num_pairs << " | "
+        << Fixed3(c.equal_recall.Recall()) << " | "
+        << c.equal_recall.num_unrelated << " |\n";
+    gcn_wrong += c.gcn.num_unrelated;
+    knn_wrong += c.equal_recall.num_unrelated;
+    fewer += c.gcn.num_unrelated < c.equal_recall.num_unrelated;
+  }
+  out << "\nWrong pairs in total: GCN " << gcn_wrong << ", kNN@R " << knn_wrong
+      << "; GCN admits fewer on " << fewer << " of " << comparisons.size()
+      << " scenes.\n";
   return out.str();
 }
 

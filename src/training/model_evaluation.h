@@ -20,9 +20,14 @@ std::vector<GcnTrainingScene> EmbedScenesForModel(
 // the model was not trained on.
 struct FixedKComparison {
   std::string scene;
+  size_t num_unrelated_pairs = 0;  // the scene's pairs that share nothing
   PairSetScores gcn;    // the model's recommended settings and threshold
   PairSetScores equal;  // the gcn.num_pairs most similar pairs
-  int equal_k = 0;      // smallest per-image k giving >= gcn.num_pairs
+  // The fewest most-similar-first pairs with at least the GCN's true
+  // positives (kNN at equal recall): its num_unrelated against the GCN's
+  // is the wrong-pair comparison of ambiguous scenes.
+  PairSetScores equal_recall;
+  int equal_k = 0;  // smallest per-image k giving >= gcn.num_pairs
   PairSetScores top_k_equal;
   int best_k = 0;  // per-image k in [1, max_k] with the best F
   PairSetScores top_k_best;
@@ -44,7 +49,9 @@ std::vector<FixedKComparison> CompareWithFixedK(
     int max_k,
     int num_threads);
 
-// The comparison as a markdown table with a mean row.
+// The comparison as markdown: the F/AP table with a mean row, then the
+// wrong pairs of the GCN and of kNN at equal recall (scenes whose labels
+// mark pairs that share nothing).
 std::string FormatFixedKComparison(
     const std::vector<FixedKComparison>& comparisons, float threshold);
 

@@ -52,6 +52,9 @@ TEST(TrainingPipeline, ScorePairSetCountsEachUnorderedPairOnce) {
   EXPECT_DOUBLE_EQ(scores.Recall(), 2.0 / 3.0);
   EXPECT_DOUBLE_EQ(scores.F(), 2.0 / 3.0);
   EXPECT_EQ(ScorePairSet({}, scene).F(), 0.0);
+  EXPECT_EQ(scores.num_unrelated, 0u);  // the scene lists none
+  scene.unrelated_pairs = {{4, 0}, {1, 2}};
+  EXPECT_EQ(ScorePairSet({{0, 1}, {0, 4}, {3, 2}}, scene).num_unrelated, 1u);
 }
 
 TEST(TrainingPipeline, TopKPairsIsTheUnionOfEveryImagesNeighbours) {
@@ -169,6 +172,38 @@ TEST(ModelEvaluation, FixedKComparisonIsConsistent) {
   const std::string table = FormatFixedKComparison({c, c}, 0.5f);
   EXPECT_NE(table.find("| clusters |"), std::string::npos) << table;
   EXPECT_NE(table.find("of 2 scenes"), std::string::npos) << table;
+}
+
+TEST(ModelEvaluation, EqualRecallBaselineCountsWrongPairs) {
+  GcnTrainingScene scene = ClusteredScene();
+  scene.name = "clusters";
+  // Pairs across clusters share nothing here.
+  const std::set<std::pair<int, int>> positives = AsSet(scene.positive_pairs);
+  const int n = static_cast<int>(scene.embeddings.rows());
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      if (!positives.count({i, j})) scene.unrelated_pairs.push_back({i, j});
+    }
+  }
+  const FixedKComparison c = CompareWithFixedK(SmallModel(), scene, 100, 2);
+  EXPECT_EQ(c.num_unrelated_pairs, scene.unrelated_pairs.size());
+  EXPECT_EQ(c.gcn.num_unrelated, c.gcn.num_pairs - c.gcn.num_true_positives);
+  // kNN@R: the shortest most-similar prefix reaching the GCN's recall.
+  EXPECT_GE(c.equal_recall.num_true_positives, c.gcn.num_true_positives);
+  EXPECT_EQ(c.equal_recall.num_unrelated,
+            c.equal_recall.num_pairs - c.equal_recall.num_true_positives);
+  ASSERT_GT(c.equal_recall.num_pairs, 0u);
+  EXPECT_LT(ScorePairSet(MostSimilarPairs(scene.embeddings,
+                                          c.equal_recall.num_pairs - 1),
+                         scene)
+                .num_true_positives,
+            c.gcn.num_true_positives);
+  const std::string table = FormatFixedKComparison({c}, 0.5f);
+  EXPECT_NE(table.find("| clusters | " +
+                       std::to_string(scene.unrelated_pairs.size()) + " | "),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("GCN admits fewer on"), std::string::npos) << table;
 }
 
 TEST(ModelEvaluation, SensitivityVariesOneParameterAtATime) {

@@ -1,4 +1,4 @@
-#include "retrieval/dense_product.h"
+#include "math/dense_product.h"
 
 #include <Eigen/Core>
 

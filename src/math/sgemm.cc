@@ -1,4 +1,4 @@
-#include "gcn/sgemm.h"
+#include "math/sgemm.h"
 
 #include <immintrin.h>
 
