@@ -123,6 +123,9 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
       for (const ScoredImagePair& pair : gcn->ScoredPairs()) {
         scores.push_back(pair.score);
       }
+      const std::string warning =
+          GcnKeptEveryCandidateWarning(gcn->Stats(), gcn->Options().k1);
+      if (!warning.empty()) std::cerr << warning << "\n";
     }
   }
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
@@ -144,6 +147,21 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   report.matching =
       MatchImagePairs(colmap, database_path, pairs, matching_options);
   return report;
+}
+
+std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1) {
+  if (stats.num_candidates == 0 ||
+      stats.num_above_threshold < stats.num_candidates) {
+    return "";
+  }
+  return "gcn_matcher: warning: all " + std::to_string(stats.num_candidates) +
+         " candidate pairs scored above the model's threshold: the GCN "
+         "chose nothing beyond each image's k1 = " +
+         std::to_string(k1) +
+         " nearest neighbours; the model is likely not calibrated for "
+         "these images (docs/model_card.md). On scenes with duplicate "
+         "objects or repeated structure use --GcnMatching.pairing knn "
+         "--GcnMatching.k 5 or sequential_matcher.";
 }
 
 void PrintGcnMatchingReport(const GcnMatchingReport& report) {

@@ -91,4 +91,11 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
 // The short table users see.
 void PrintGcnMatchingReport(const GcnMatchingReport& report);
 
+// A one-line warning when the GCN kept every candidate pair it scored: it
+// then chose nothing beyond the k1 nearest neighbours, which is what a
+// model does on images unlike its training scenes (all real photo sets
+// for the default model, docs/model_card.md), and on scenes with
+// duplicate structure it admits the pairs that fold models. "" otherwise.
+std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1);
+
 }  // namespace colmap_gcn

@@ -71,6 +71,7 @@ class GcnPairGenerator : public PairGenerator {
   // The selected pairs with their scores, in yield order.
   const std::vector<ScoredImagePair>& ScoredPairs() const { return pairs_; }
   const GcnPairingStats& Stats() const { return stats_; }
+  const GcnPairingOptions& Options() const { return options_; }
 
  private:
   const GcnPairingOptions options_;

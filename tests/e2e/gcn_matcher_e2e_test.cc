@@ -360,6 +360,23 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
       << output;
   EXPECT_EQ(ReadPairsFile(pairs_path2), pairs);
 
+  // Threshold 0 keeps every candidate: the user is warned that the GCN
+  // chose nothing beyond the k1 nearest neighbours.
+  const std::string pairs_path3 = JoinPaths(dir_->Path(), "gcn_pairs3.txt");
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.model_path " + model_path +
+                       " --GcnMatching.k1 6 --GcnMatching.k2 3"
+                       " --GcnMatching.u 3 --GcnMatching.threshold 0"
+                       " --GcnMatching.pairs_path " +
+                       pairs_path3,
+                   &output),
+            0)
+      << output;
+  EXPECT_NE(output.find("gcn_matcher: warning: all "), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("k1 = 6 "), std::string::npos) << output;
+  EXPECT_GE(ReadPairsFile(pairs_path3).size(), pairs.size());
+
   // A model file that is not one: one-line error, database untouched.
   const std::string before = ReadTextFile(database_path);
   WriteFileAtomically(model_path, "not a model");
