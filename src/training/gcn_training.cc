@@ -22,6 +22,13 @@ uint64_t PairKey(int i, int j) {
          static_cast<uint32_t>(std::max(i, j));
 }
 
+std::unordered_set<uint64_t> PairKeys(
+    const std::vector<std::pair<int, int>>& pairs) {
+  std::unordered_set<uint64_t> keys;
+  for (const auto& [i, j] : pairs) keys.insert(PairKey(i, j));
+  return keys;
+}
+
 }  // namespace
 
 std::vector<LabelledScene> FindLabelledScenes(
@@ -107,8 +114,7 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
   std::sort(rows.begin(), rows.end());
   for (size_t a = 0; a < rows.size(); ++a) {
     for (size_t b = a + 1; b < rows.size(); ++b) {
-      if (labels.IsLabelled(rows[a].first, rows[b].first) &&
-          labels.SharesNothing(rows[a].first, rows[b].first)) {
+      if (labels.SharesNothing(rows[a].first, rows[b].first)) {
         training_scene.unrelated_pairs.emplace_back(rows[a].second,
                                                     rows[b].second);
       }
@@ -212,17 +218,12 @@ double PairSetScores::F() const {
 
 PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
                            const GcnTrainingScene& scene) {
-  std::unordered_set<uint64_t> positives;
-  for (const auto& [i, j] : scene.positive_pairs) {
-    positives.insert(PairKey(i, j));
-  }
+  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
+  const std::unordered_set<uint64_t> unrelated =
+      PairKeys(scene.unrelated_pairs);
   std::unordered_set<uint64_t> selected;
   for (const auto& [i, j] : pairs) {
     if (i != j) selected.insert(PairKey(i, j));
-  }
-  std::unordered_set<uint64_t> unrelated;
-  for (const auto& [i, j] : scene.unrelated_pairs) {
-    unrelated.insert(PairKey(i, j));
   }
   PairSetScores scores;
   scores.num_pairs = selected.size();
@@ -253,6 +254,21 @@ std::vector<std::pair<int, int>> MostSimilarPairs(
                     });
   pairs.resize(num_pairs);
   return pairs;
+}
+
+std::vector<std::pair<int, int>> ShortestPrefixWithTruePositives(
+    std::vector<std::pair<int, int>> ranked,
+    const GcnTrainingScene& scene,
+    size_t num_true_positives) {
+  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
+  size_t prefix = 0;
+  for (size_t found = 0; prefix < ranked.size() && found < num_true_positives;
+       ++prefix) {
+    found +=
+        positives.count(PairKey(ranked[prefix].first, ranked[prefix].second));
+  }
+  ranked.resize(prefix);
+  return ranked;
 }
 
 std::vector<std::pair<int, int>> TopKPairs(const KnnGraph& graph, int k) {
@@ -306,10 +322,7 @@ std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
 std::vector<uint8_t> MatchableFlags(
     const std::vector<ScoredRowPair>& candidates,
     const GcnTrainingScene& scene) {
-  std::unordered_set<uint64_t> positives;
-  for (const auto& [i, j] : scene.positive_pairs) {
-    positives.insert(PairKey(i, j));
-  }
+  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
   std::vector<uint8_t> flags;
   flags.reserve(candidates.size());
   for (const auto& candidate : candidates) {

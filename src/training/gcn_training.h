@@ -78,6 +78,14 @@ PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
 std::vector<std::pair<int, int>> MostSimilarPairs(
     const EmbeddingMatrix& embeddings, size_t num_pairs);
 
+// The shortest prefix of `ranked` holding num_true_positives matchable pairs
+// of the scene (all of `ranked` if it holds fewer): a ranking's cost, in
+// pairs, of reaching a given recall.
+std::vector<std::pair<int, int>> ShortestPrefixWithTruePositives(
+    std::vector<std::pair<int, int>> ranked,
+    const GcnTrainingScene& scene,
+    size_t num_true_positives);
+
 // The fixed-k retrieval baseline (paper's "CNN kNN"): the union of every
 // image's k most similar images, as KnnPairGenerator selects them.
 std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,

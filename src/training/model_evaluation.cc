@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
-#include <set>
 #include <sstream>
 
 #include "evaluation/figures.h"
@@ -93,25 +92,17 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
   result.gcn_ap = AveragePrecision(scores, matchable);
   result.similarity_ap = AveragePrecision(similarities, matchable);
   const int n = static_cast<int>(scene.embeddings.rows());
-  std::vector<std::pair<int, int>> by_similarity = MostSimilarPairs(
+  const std::vector<std::pair<int, int>> by_similarity = MostSimilarPairs(
       scene.embeddings, static_cast<size_t>(n) * std::max(n - 1, 0) / 2);
   result.equal =
       ScorePairSet({by_similarity.begin(),
                     by_similarity.begin() +
                         std::min(by_similarity.size(), result.gcn.num_pairs)},
                    scene);
-  std::set<std::pair<int, int>> positives;
-  for (const auto& [i, j] : scene.positive_pairs) {
-    positives.emplace(std::min(i, j), std::max(i, j));
-  }
-  size_t prefix = 0;
-  for (size_t found = 0;
-       prefix < by_similarity.size() && found < result.gcn.num_true_positives;
-       ++prefix) {
-    found += positives.count(by_similarity[prefix]);  // i < j
-  }
-  by_similarity.resize(prefix);
-  result.equal_recall = ScorePairSet(by_similarity, scene);
+  result.equal_recall =
+      ScorePairSet(ShortestPrefixWithTruePositives(
+                       by_similarity, scene, result.gcn.num_true_positives),
+                   scene);
   if (n < 2) return result;
   KnnOptions knn_options;
   knn_options.k = std::min(max_k, n - 1);
