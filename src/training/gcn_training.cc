@@ -271,6 +271,28 @@ std::vector<std::pair<int, int>> ShortestPrefixWithTruePositives(
   return ranked;
 }
 
+double BestPrecisionAtRecall(const std::vector<std::pair<int, int>>& ranked,
+                             const GcnTrainingScene& scene,
+                             double min_recall) {
+  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
+  if (positives.empty()) return -1;
+  std::unordered_set<uint64_t> seen;
+  size_t num_true_positives = 0;
+  double best = -1;
+  for (const auto& [i, j] : ranked) {
+    const uint64_t key = PairKey(i, j);
+    if (i == j || !seen.insert(key).second) continue;
+    num_true_positives += positives.count(key);
+    const double recall =
+        static_cast<double>(num_true_positives) / positives.size();
+    if (recall >= min_recall) {
+      best =
+          std::max(best, static_cast<double>(num_true_positives) / seen.size());
+    }
+  }
+  return best;
+}
+
 std::vector<std::pair<int, int>> TopKPairs(const KnnGraph& graph, int k) {
   const int n = graph.NumImages();
   k = std::min(k, graph.K());

@@ -86,6 +86,15 @@ std::vector<std::pair<int, int>> ShortestPrefixWithTruePositives(
     const GcnTrainingScene& scene,
     size_t num_true_positives);
 
+// The highest precision of any prefix of `ranked` (best first; a repeated
+// pair counts at its first place) whose recall over all of the scene's
+// matchable pairs is at least `min_recall`, or -1 if no prefix reaches it.
+// With the labels choosing the cut, this bounds what any threshold on the
+// ranking can reach.
+double BestPrecisionAtRecall(const std::vector<std::pair<int, int>>& ranked,
+                             const GcnTrainingScene& scene,
+                             double min_recall);
+
 // The fixed-k retrieval baseline (paper's "CNN kNN"): the union of every
 // image's k most similar images, as KnnPairGenerator selects them.
 std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,

@@ -35,7 +35,17 @@ struct FixedKComparison {
   // average precision by GCN score and by embedding similarity.
   double gcn_ap = 0;
   double similarity_ap = 0;
+  // The best precision any threshold reaches at recall >=
+  // kPrecisionAtRecall (chosen with the labels): by GCN score over the
+  // candidates and by similarity over all pairs; -1 where the ranking
+  // never reaches that recall.
+  double gcn_precision_at_recall = -1;
+  double similarity_precision_at_recall = -1;
 };
+
+// Recall at which FixedKComparison reports the best reachable precision
+// (the retrieval target on ground-truth scenes: P >= 0.9 at R >= 0.8).
+constexpr double kPrecisionAtRecall = 0.8;
 
 FixedKComparison CompareWithFixedK(const GcnModel& model,
                                    const GcnTrainingScene& scene,

@@ -206,6 +206,59 @@ TEST(ModelEvaluation, EqualRecallBaselineCountsWrongPairs) {
   EXPECT_NE(table.find("GCN admits fewer on"), std::string::npos) << table;
 }
 
+TEST(ModelEvaluation, BestPrecisionAtRecallTakesTheBestCut) {
+  GcnTrainingScene scene;
+  scene.embeddings = EmbeddingMatrix::Zero(6, 2);
+  scene.positive_pairs = {{0, 1}, {2, 3}, {4, 5}, {1, 2}, {0, 5}};
+  // Ranked: T F T (repeat, ignored) T F F T; running precision 1, 1/2,
+  // 2/3, 3/4, 3/5, 3/6, 4/7 at recall 0.2, 0.2, 0.4, 0.6, 0.6, 0.6, 0.8.
+  const std::vector<std::pair<int, int>> ranked = {
+      {0, 1}, {0, 2}, {3, 2}, {1, 0}, {4, 5}, {1, 3}, {3, 5}, {1, 2}};
+  EXPECT_DOUBLE_EQ(BestPrecisionAtRecall(ranked, scene, 0.2), 1.0);
+  EXPECT_DOUBLE_EQ(BestPrecisionAtRecall(ranked, scene, 0.4), 3.0 / 4.0);
+  EXPECT_DOUBLE_EQ(BestPrecisionAtRecall(ranked, scene, 0.6), 3.0 / 4.0);
+  EXPECT_DOUBLE_EQ(BestPrecisionAtRecall(ranked, scene, 0.8), 4.0 / 7.0);
+  // (0, 5) is never ranked: full recall is out of reach.
+  EXPECT_EQ(BestPrecisionAtRecall(ranked, scene, 1.0), -1);
+  scene.positive_pairs.clear();
+  EXPECT_EQ(BestPrecisionAtRecall(ranked, scene, 0.5), -1);
+}
+
+TEST(ModelEvaluation, PrecisionAtTargetRecallIsReportedForBothRankings) {
+  // Tight clusters: similarity ranks every within-cluster pair first.
+  GcnTrainingScene scene;
+  scene.name = "tight";
+  std::vector<int> cluster_of;
+  scene.embeddings =
+      test::ClusteredEmbeddings({8, 12, 5, 9}, 16, 0.01f, 3, &cluster_of);
+  for (int i = 0; i < scene.embeddings.rows(); ++i) {
+    for (int j = i + 1; j < scene.embeddings.rows(); ++j) {
+      if (cluster_of[i] == cluster_of[j])
+        scene.positive_pairs.push_back({i, j});
+    }
+  }
+  const GcnModel model = SmallModel();
+  const FixedKComparison c = CompareWithFixedK(model, scene, 100, 2);
+  EXPECT_DOUBLE_EQ(c.similarity_precision_at_recall, 1.0);
+  // The GCN's value is its own candidates' ranking, cut by the labels.
+  std::vector<ScoredRowPair> candidates = GcnCandidatePairs(model, scene, 1);
+  std::stable_sort(candidates.begin(),
+                   candidates.end(),
+                   [](const ScoredRowPair& a, const ScoredRowPair& b) {
+                     return a.score > b.score;
+                   });
+  std::vector<std::pair<int, int>> ranked;
+  for (const auto& candidate : candidates) {
+    ranked.emplace_back(candidate.row1, candidate.row2);
+  }
+  EXPECT_DOUBLE_EQ(c.gcn_precision_at_recall,
+                   BestPrecisionAtRecall(ranked, scene, kPrecisionAtRecall));
+  const std::string table = FormatFixedKComparison({c}, 0.5f);
+  EXPECT_NE(table.find("Best precision at recall >= 0.8"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find("| tight | "), std::string::npos) << table;
+}
+
 TEST(ModelEvaluation, SensitivityVariesOneParameterAtATime) {
   const GcnTrainingScene scene = ClusteredScene();
   const GcnModel model = SmallModel();
