@@ -20,7 +20,10 @@
 #   test        synthetic seed 9; the real scenes with ground truth and the
 #               ambiguous ones are left for scripts/benchmark_all.sh.
 # Environment: SCENE_SIZE (images per synthetic scene, default 80),
-# COLMAP_GCN_BUILD (default build), SHARED (default ../shared/datasets).
+# COLMAP_GCN_BUILD (default build), SHARED (default ../shared/datasets);
+# GT_TRAIN / GT_TEST: comma-separated shared scenes with ground truth to
+# train on / to add to the held-out table (empty by default: the shipped
+# model; scripts/leave_scene_out.sh uses them for its folds).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 WORK="${1:-train-work}"
@@ -44,13 +47,22 @@ synth() {  # synth <seeds...>: dataset specs and scene names
 read -r TRAIN_SPECS TRAIN_NAMES <<<"$(synth 1 2 3)"
 read -r VAL_SPECS VAL_NAMES <<<"$(synth 4)"
 read -r TEST_SPECS TEST_NAMES <<<"$(synth 9)"
-for scene in kermit et sceaux-castle sacre-coeur british-museum statue cake; do
+GT_TRAIN="${GT_TRAIN:-}"
+GT_TEST="${GT_TEST:-}"
+for scene in kermit et sceaux-castle sacre-coeur british-museum statue cake \
+  ${GT_TRAIN//,/ }; do
   if [ -d "$SHARED/$scene/images" ]; then
     TRAIN_SPECS="$TRAIN_SPECS,$SHARED/$scene"
     TRAIN_NAMES="$TRAIN_NAMES,$scene"
   else
     echo "train_default_model: $SHARED/$scene not found, skipped" >&2
   fi
+done
+for scene in ${GT_TEST//,/ }; do
+  [ -d "$SHARED/$scene/gt" ] ||
+    { echo "train_default_model: $SHARED/$scene has no gt/" >&2; exit 1; }
+  TEST_SPECS="$TEST_SPECS,$SHARED/$scene"
+  TEST_NAMES="$TEST_NAMES,$scene"
 done
 
 # 1. Features and labels (no matching methods): <WORK>/<scene>/base.db and
