@@ -24,11 +24,11 @@ std::set<std::pair<int, int>> AsSet(
 }
 
 // Four clusters; the matchable pairs are those within a cluster.
-GcnTrainingScene ClusteredScene() {
+GcnTrainingScene ClusteredScene(float noise = 0.6f) {
   GcnTrainingScene scene;
   std::vector<int> cluster_of;
   scene.embeddings =
-      test::ClusteredEmbeddings({8, 12, 5, 9}, 16, 0.6f, 3, &cluster_of);
+      test::ClusteredEmbeddings({8, 12, 5, 9}, 16, noise, 3, &cluster_of);
   for (int i = 0; i < scene.embeddings.rows(); ++i) {
     for (int j = i + 1; j < scene.embeddings.rows(); ++j) {
       if (cluster_of[i] == cluster_of[j])
@@ -226,17 +226,8 @@ TEST(ModelEvaluation, BestPrecisionAtRecallTakesTheBestCut) {
 
 TEST(ModelEvaluation, PrecisionAtTargetRecallIsReportedForBothRankings) {
   // Tight clusters: similarity ranks every within-cluster pair first.
-  GcnTrainingScene scene;
+  GcnTrainingScene scene = ClusteredScene(0.01f);
   scene.name = "tight";
-  std::vector<int> cluster_of;
-  scene.embeddings =
-      test::ClusteredEmbeddings({8, 12, 5, 9}, 16, 0.01f, 3, &cluster_of);
-  for (int i = 0; i < scene.embeddings.rows(); ++i) {
-    for (int j = i + 1; j < scene.embeddings.rows(); ++j) {
-      if (cluster_of[i] == cluster_of[j])
-        scene.positive_pairs.push_back({i, j});
-    }
-  }
   const GcnModel model = SmallModel();
   const FixedKComparison c = CompareWithFixedK(model, scene, 100, 2);
   EXPECT_DOUBLE_EQ(c.similarity_precision_at_recall, 1.0);
