@@ -33,7 +33,10 @@ int RunGcnModelEvaluator(int argc, char** argv) {
                             &benchmark_path,
                             "gcn_benchmark output folder with the scenes");
   manager.AddDefaultOption(
-      "scenes", &scenes, "comma list; empty: every labelled scene");
+      "scenes",
+      &scenes,
+      "comma list (a+b: a collection of scenes a and b, pairs across them "
+      "unrelated); empty: every labelled scene");
   manager.AddDefaultOption(
       "model_path", &model_path, "empty: the default model");
   manager.AddDefaultOption(

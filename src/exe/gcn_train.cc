@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <set>
 
 #include "gcn/model_file.h"
 #include "training/gcn_training.h"
@@ -38,7 +39,10 @@ int RunGcnTrain(int argc, char** argv) {
                             "gcn_benchmark output folder with the scenes");
   manager.AddRequiredOption("output_path", &output_path, "model file");
   manager.AddDefaultOption(
-      "scenes", &scenes, "training scenes (comma list); empty: all others");
+      "scenes",
+      &scenes,
+      "training scenes (comma list; a+b: a collection of scenes a and b, "
+      "pairs across them unrelated); empty: all others");
   manager.AddDefaultOption("validation_scenes",
                            &validation_scenes,
                            "for early stopping; empty: held-out queries");
@@ -119,13 +123,22 @@ int RunGcnTrain(int argc, char** argv) {
   const std::vector<std::string> validation_names =
       SplitCommaList(validation_scenes);
   const std::vector<std::string> test_names = SplitCommaList(test_scenes);
+  // Held out by scene, also inside collections ("a+b" holds out a and b).
+  std::set<std::string> held_out_scenes;
+  for (const auto& names : {validation_names, test_names}) {
+    for (const auto& name : names) {
+      for (const auto& part : StringSplit(name, "+")) {
+        held_out_scenes.insert(part);
+      }
+    }
+  }
   std::vector<LabelledScene> train;
   for (const auto& scene :
        FindLabelledScenes(benchmark_path, SplitCommaList(scenes))) {
-    const bool held_out =
-        std::count(
-            validation_names.begin(), validation_names.end(), scene.name) > 0 ||
-        std::count(test_names.begin(), test_names.end(), scene.name) > 0;
+    bool held_out = false;
+    for (const auto& part : StringSplit(scene.name, "+")) {
+      held_out = held_out || held_out_scenes.count(part) > 0;
+    }
     if (!held_out) train.push_back(scene);
   }
   if (train.empty()) {

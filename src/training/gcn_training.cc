@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -59,7 +60,7 @@ std::vector<LabelledScene> FindLabelledScenes(
       }
     }
   } else {
-    for (const auto& name : names) {
+    auto prepared_scene_at = [&](const std::string& name) {
       const LabelledScene scene = scene_at(name);
       if (!ExistsFile(scene.database_path) || !ExistsFile(scene.labels_path)) {
         ThrowError("scene ",
@@ -69,7 +70,23 @@ std::vector<LabelledScene> FindLabelledScenes(
                    " has no base.db and labels/labels.csv; prepare it with "
                    "colmap gcn_benchmark --methods oracle");
       }
-      scenes.push_back(scene);
+      return scene;
+    };
+    for (const auto& name : names) {
+      if (name.find('+') == std::string::npos) {
+        scenes.push_back(prepared_scene_at(name));
+        continue;
+      }
+      LabelledScene collection;
+      collection.name = name;
+      std::set<std::string> seen;
+      for (const auto& part : StringSplit(name, "+")) {
+        if (part.empty() || !seen.insert(part).second) {
+          ThrowError("collection ", name, " needs distinct scene names");
+        }
+        collection.parts.push_back(prepared_scene_at(part));
+      }
+      scenes.push_back(collection);
     }
   }
   if (scenes.empty()) {
@@ -83,10 +100,53 @@ bool GcnTrainingPipelineOptions::Check() const {
          (threshold < 0 || (threshold > 0 && threshold < 1));
 }
 
+GcnTrainingScene MergeTrainingScenes(
+    const std::string& name, const std::vector<GcnTrainingScene>& parts) {
+  GcnTrainingScene merged;
+  merged.name = name;
+  if (parts.empty()) return merged;
+  Eigen::Index num_rows = 0;
+  for (const auto& part : parts) {
+    if (num_rows > 0 && part.embeddings.cols() != parts[0].embeddings.cols()) {
+      ThrowError("collection ", name, " mixes embedding dimensions");
+    }
+    num_rows += part.embeddings.rows();
+  }
+  merged.embeddings.resize(num_rows, parts.front().embeddings.cols());
+  Eigen::Index offset = 0;
+  for (const auto& part : parts) {
+    const int first = static_cast<int>(offset);
+    merged.embeddings.middleRows(offset, part.embeddings.rows()) =
+        part.embeddings;
+    for (const auto& [i, j] : part.positive_pairs) {
+      merged.positive_pairs.emplace_back(first + i, first + j);
+    }
+    for (const auto& [i, j] : part.unrelated_pairs) {
+      merged.unrelated_pairs.emplace_back(first + i, first + j);
+    }
+    // Every image of this part against every image of the earlier parts.
+    for (int i = 0; i < first; ++i) {
+      for (Eigen::Index j = 0; j < part.embeddings.rows(); ++j) {
+        merged.unrelated_pairs.emplace_back(i, first + static_cast<int>(j));
+      }
+    }
+    offset += part.embeddings.rows();
+  }
+  return merged;
+}
+
 GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
                                    const VladEmbedding& vlad,
                                    const PairLabelOptions& label_options,
                                    int num_threads) {
+  if (!scene.parts.empty()) {
+    std::vector<GcnTrainingScene> parts;
+    for (const auto& part : scene.parts) {
+      parts.push_back(
+          MakeTrainingScene(part, vlad, label_options, num_threads));
+    }
+    return MergeTrainingScenes(scene.name, parts);
+  }
   const Database database(scene.database_path);
   const PairLabels labels = PairLabels::Read(scene.labels_path);
   std::vector<image_t> image_ids;
@@ -129,9 +189,17 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   if (!options.Check()) {
     ThrowError("invalid GCN training options");
   }
+  // Each database once, in order, whether a scene or a collection's part.
   std::vector<std::string> database_paths;
+  std::set<std::string> seen;
   for (const auto& scene : training_scenes) {
-    database_paths.push_back(scene.database_path);
+    for (const auto& part : scene.parts.empty()
+                                ? std::vector<LabelledScene>{scene}
+                                : scene.parts) {
+      if (seen.insert(part.database_path).second) {
+        database_paths.push_back(part.database_path);
+      }
+    }
   }
   const auto& log = options.training.log;
   if (log)

@@ -13,14 +13,20 @@ namespace colmap_gcn {
 // A scene prepared for training: its COLMAP database (features extracted)
 // and its ground-truth pair labels. `colmap gcn_benchmark` prepares both
 // (<output>/<scene>/base.db and <output>/<scene>/labels/labels.csv).
+//
+// Or a collection of such scenes, named "a+b+c": all of their images, the
+// pairs across scenes labelled as sharing nothing. Unrelated photos, as in
+// an internet collection, are the negatives small real scenes lack.
 struct LabelledScene {
   std::string name;
   std::string database_path;
   std::string labels_path;
+  std::vector<LabelledScene> parts;  // a collection's scenes, else empty
 };
 
 // The scenes of a gcn_benchmark output folder; `names` selects some (all
-// with both files when empty). Throws Error naming a missing scene.
+// with both files when empty; "a+b" a collection of scenes a and b).
+// Throws Error naming a missing scene.
 std::vector<LabelledScene> FindLabelledScenes(
     const std::string& benchmark_path, const std::vector<std::string>& names);
 
@@ -44,6 +50,11 @@ struct GcnTrainingPipelineOptions {
 
   bool Check() const;
 };
+
+// The collection of `parts`: their embeddings stacked in order, their
+// pairs re-indexed, every pair across parts unrelated.
+GcnTrainingScene MergeTrainingScenes(
+    const std::string& name, const std::vector<GcnTrainingScene>& parts);
 
 // Embeds every scene with `vlad` and turns its labels into row-index pairs.
 GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,

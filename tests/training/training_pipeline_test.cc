@@ -8,6 +8,7 @@
 #include "gcn/gcn_pair_generator.h"
 #include "gcn/gcn_test_utils.h"
 #include "training/model_evaluation.h"
+#include "util/error.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
@@ -144,6 +145,50 @@ TEST(TrainingPipeline, ThresholdSelectionMaximisesMeanF) {
         << "threshold " << 0.05f * step;
   }
   EXPECT_EQ(SelectGcnThreshold(model, {}, 1), 0.5f);
+}
+
+TEST(TrainingPipeline, MergedScenesStackImagesAndMakeCrossPairsUnrelated) {
+  GcnTrainingScene a;
+  a.embeddings = EmbeddingMatrix::Constant(3, 2, 1.f);
+  a.positive_pairs = {{0, 1}};
+  a.unrelated_pairs = {{0, 2}};
+  GcnTrainingScene b;
+  b.embeddings = EmbeddingMatrix::Constant(2, 2, 2.f);
+  b.positive_pairs = {{1, 0}};
+  const GcnTrainingScene merged = MergeTrainingScenes("a+b", {a, b});
+  EXPECT_EQ(merged.name, "a+b");
+  ASSERT_EQ(merged.embeddings.rows(), 5);
+  EXPECT_EQ(merged.embeddings(2, 0), 1.f);
+  EXPECT_EQ(merged.embeddings(3, 1), 2.f);
+  EXPECT_EQ(AsSet(merged.positive_pairs),
+            (std::set<std::pair<int, int>>{{0, 1}, {3, 4}}));
+  // a's own unrelated pair plus all 3 x 2 pairs across the scenes.
+  EXPECT_EQ(AsSet(merged.unrelated_pairs),
+            (std::set<std::pair<int, int>>{
+                {0, 2}, {0, 3}, {0, 4}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
+  b.embeddings = EmbeddingMatrix::Zero(2, 3);
+  EXPECT_THROW(MergeTrainingScenes("a+b", {a, b}), Error);
+}
+
+TEST(TrainingPipeline, CollectionsAreNamedWithPlus) {
+  TemporaryDirectory dir("collections_test");
+  for (const char* name : {"a", "b"}) {
+    const std::string scene = JoinPaths(dir.Path(), name);
+    CreateDirIfNotExists(JoinPaths(scene, "labels"));
+    WriteFileAtomically(JoinPaths(scene, "base.db"), "");
+    WriteFileAtomically(JoinPaths(scene, "labels/labels.csv"), "");
+  }
+  const auto scenes = FindLabelledScenes(dir.Path(), {"a+b", "b"});
+  ASSERT_EQ(scenes.size(), 2u);
+  EXPECT_EQ(scenes[0].name, "a+b");
+  ASSERT_EQ(scenes[0].parts.size(), 2u);
+  EXPECT_EQ(scenes[0].parts[1].name, "b");
+  EXPECT_EQ(scenes[0].parts[1].database_path,
+            JoinPaths(JoinPaths(dir.Path(), "b"), "base.db"));
+  EXPECT_TRUE(scenes[1].parts.empty());
+  EXPECT_THROW(FindLabelledScenes(dir.Path(), {"a+a"}), Error);
+  EXPECT_THROW(FindLabelledScenes(dir.Path(), {"a+c"}), Error);
+  EXPECT_THROW(FindLabelledScenes(dir.Path(), {"a+"}), Error);
 }
 
 TEST(ModelEvaluation, FixedKComparisonIsConsistent) {
