@@ -1,9 +1,7 @@
 #include "exe/gcn_train.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <iostream>
-#include <set>
 
 #include "gcn/model_file.h"
 #include "training/gcn_training.h"
@@ -123,24 +121,10 @@ int RunGcnTrain(int argc, char** argv) {
   const std::vector<std::string> validation_names =
       SplitCommaList(validation_scenes);
   const std::vector<std::string> test_names = SplitCommaList(test_scenes);
-  // Held out by scene, also inside collections ("a+b" holds out a and b).
-  std::set<std::string> held_out_scenes;
-  for (const auto& names : {validation_names, test_names}) {
-    for (const auto& name : names) {
-      for (const auto& part : StringSplit(name, "+")) {
-        held_out_scenes.insert(part);
-      }
-    }
-  }
-  std::vector<LabelledScene> train;
-  for (const auto& scene :
-       FindLabelledScenes(benchmark_path, SplitCommaList(scenes))) {
-    bool held_out = false;
-    for (const auto& part : StringSplit(scene.name, "+")) {
-      held_out = held_out || held_out_scenes.count(part) > 0;
-    }
-    if (!held_out) train.push_back(scene);
-  }
+  std::vector<std::string> held_out = validation_names;
+  held_out.insert(held_out.end(), test_names.begin(), test_names.end());
+  const std::vector<LabelledScene> train = WithoutHeldOutScenes(
+      FindLabelledScenes(benchmark_path, SplitCommaList(scenes)), held_out);
   if (train.empty()) {
     ThrowError(
         "no training scenes left after holding out validation and "

@@ -95,6 +95,26 @@ std::vector<LabelledScene> FindLabelledScenes(
   return scenes;
 }
 
+std::vector<LabelledScene> WithoutHeldOutScenes(
+    const std::vector<LabelledScene>& scenes,
+    const std::vector<std::string>& held_out) {
+  std::set<std::string> held_out_scenes;
+  for (const auto& name : held_out) {
+    for (const auto& part : StringSplit(name, "+")) {
+      held_out_scenes.insert(part);
+    }
+  }
+  std::vector<LabelledScene> kept;
+  for (const auto& scene : scenes) {
+    bool shares = false;
+    for (const auto& part : StringSplit(scene.name, "+")) {
+      shares = shares || held_out_scenes.count(part) > 0;
+    }
+    if (!shares) kept.push_back(scene);
+  }
+  return kept;
+}
+
 bool GcnTrainingPipelineOptions::Check() const {
   return vlad.Check() && labels.Check() && training.Check() &&
          (threshold < 0 || (threshold > 0 && threshold < 1));

@@ -30,6 +30,12 @@ struct LabelledScene {
 std::vector<LabelledScene> FindLabelledScenes(
     const std::string& benchmark_path, const std::vector<std::string>& names);
 
+// `scenes` without any that shares a scene with `held_out` (names; "a+b"
+// holds out a and b, and a collection containing a held-out scene goes).
+std::vector<LabelledScene> WithoutHeldOutScenes(
+    const std::vector<LabelledScene>& scenes,
+    const std::vector<std::string>& held_out);
+
 struct GcnTrainingPipelineOptions {
   // The shared embedding: one VLAD codebook + whitening trained on all
   // training databases, stored in the model so inference embeds alike.

@@ -186,6 +186,12 @@ TEST(TrainingPipeline, CollectionsAreNamedWithPlus) {
   EXPECT_EQ(scenes[0].parts[1].database_path,
             JoinPaths(JoinPaths(dir.Path(), "b"), "base.db"));
   EXPECT_TRUE(scenes[1].parts.empty());
+  // Held out inside collections too.
+  const auto kept = WithoutHeldOutScenes(scenes, {"b+c"});
+  EXPECT_TRUE(kept.empty());
+  ASSERT_EQ(WithoutHeldOutScenes(scenes, {"a"}).size(), 1u);
+  EXPECT_EQ(WithoutHeldOutScenes(scenes, {"a"})[0].name, "b");
+  EXPECT_EQ(WithoutHeldOutScenes(scenes, {}).size(), 2u);
   EXPECT_THROW(FindLabelledScenes(dir.Path(), {"a+a"}), Error);
   EXPECT_THROW(FindLabelledScenes(dir.Path(), {"a+c"}), Error);
   EXPECT_THROW(FindLabelledScenes(dir.Path(), {"a+"}), Error);
