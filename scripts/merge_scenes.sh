@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Merges prepared scenes into one photo collection on disk, for SfM runs on
+# it (docs/benchmarks.md); training and evaluation take the same collection
+# in memory as "a+b+c" (docs/model_card.md).
+#
+#   scripts/merge_scenes.sh OUT BENCHMARK_DIR SCENE SCENE...
+#
+# BENCHMARK_DIR holds the scenes as `colmap gcn_benchmark` prepares them
+# (<scene>/base.db, <scene>/labels/labels.csv). OUT (must not exist) gets
+#   base.db             cameras, images, keypoints and descriptors of every
+#                       scene, images renamed <scene>__<name>, no matches;
+#   labels/labels.csv   each scene's labels; pairs across scenes unlisted,
+#                       i.e. sharing nothing — true only if the scenes do;
+#   images/             links to $SHARED/<scene>/images/* (default
+#                       ../shared/datasets), for colmap mapper --image_path.
+set -euo pipefail
+if [ "$#" -lt 4 ]; then
+  echo "usage: $0 OUT BENCHMARK_DIR SCENE SCENE..." >&2
+  exit 2
+fi
+OUT="$1"
+BENCH="$2"
+shift 2
+SHARED="${SHARED:-$(dirname "$0")/../../shared/datasets}"
+if [ -e "$OUT" ]; then
+  echo "merge_scenes: $OUT exists" >&2
+  exit 1
+fi
+KINDS=""
+for scene in "$@"; do
+  labels="$BENCH/$scene/labels/labels.csv"
+  if [ ! -f "$BENCH/$scene/base.db" ] || [ ! -f "$labels" ]; then
+    echo "merge_scenes: $BENCH/$scene has no base.db and labels/labels.csv" >&2
+    exit 1
+  fi
+  kinds=$(grep "^# kinds," "$labels" || true)
+  if [ -z "$kinds" ] || { [ -n "$KINDS" ] && [ "$kinds" != "$KINDS" ]; }; then
+    echo "merge_scenes: $labels: labels of another kind" >&2
+    exit 1
+  fi
+  KINDS="$kinds"
+done
+
+mkdir -p "$OUT/labels" "$OUT/images"
+DB="$OUT/base.db"
+sqlite3 "$BENCH/$1/base.db" .schema | grep -v sqlite_sequence | sqlite3 "$DB"
+LABELS="$OUT/labels/labels.csv"
+PAIRS="$OUT/labels/pairs.tmp"
+echo "# source,collection of $*" >"$LABELS"
+echo "$KINDS" >>"$LABELS"
+: >"$PAIRS"
+for scene in "$@"; do
+  image_offset=$(sqlite3 "$DB" "select coalesce(max(image_id), 0) from images")
+  camera_offset=$(sqlite3 "$DB" "select coalesce(max(camera_id), 0) from cameras")
+  sqlite3 "$DB" "attach '$BENCH/$scene/base.db' as s;
+    insert into cameras select camera_id + $camera_offset, model, width,
+      height, params, prior_focal_length from s.cameras;
+    insert into images select image_id + $image_offset, '${scene}__' || name,
+      camera_id + $camera_offset, prior_qw, prior_qx, prior_qy, prior_qz,
+      prior_tx, prior_ty, prior_tz from s.images;
+    insert into keypoints select image_id + $image_offset, rows, cols, data
+      from s.keypoints;
+    insert into descriptors select image_id + $image_offset, rows, cols, data
+      from s.descriptors;"
+  labels="$BENCH/$scene/labels/labels.csv"
+  awk -F, -v p="${scene}__" '$1 == "image" { print "image," p $2 }' \
+    "$labels" >>"$LABELS"
+  awk -F, -v p="${scene}__" 'pairs { print p $1 "," p $2 "," $3 "," $4 }
+    $1 == "name1" { pairs = 1 }' "$labels" >>"$PAIRS"
+  if [ -d "$SHARED/$scene/images" ]; then
+    for image in "$SHARED/$scene/images"/*; do
+      ln -s "$(readlink -f "$image")" "$OUT/images/${scene}__$(basename "$image")"
+    done
+  fi
+done
+echo "name1,name2,overlap,common_track_ratio" >>"$LABELS"
+cat "$PAIRS" >>"$LABELS"
+rm "$PAIRS"
+echo "merge_scenes: $(sqlite3 "$DB" "select count(*) from images") images in $OUT"
