@@ -159,9 +159,10 @@ std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1) {
          "chose nothing beyond each image's k1 = " +
          std::to_string(k1) +
          " nearest neighbours; the model is likely not calibrated for "
-         "these images (docs/model_card.md). On scenes with duplicate "
-         "objects or repeated structure use --GcnMatching.pairing knn "
-         "--GcnMatching.k 5 or sequential_matcher.";
+         "these images (docs/model_card.md). On photos of several "
+         "unrelated places try --GcnMatching.threshold 0.9; on scenes with "
+         "duplicate objects or repeated structure use --GcnMatching.pairing "
+         "knn --GcnMatching.k 5 or sequential_matcher.";
 }
 
 void PrintGcnMatchingReport(const GcnMatchingReport& report) {
