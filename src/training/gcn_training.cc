@@ -125,14 +125,15 @@ GcnTrainingScene MergeTrainingScenes(
   GcnTrainingScene merged;
   merged.name = name;
   if (parts.empty()) return merged;
+  const Eigen::Index dim = parts.front().embeddings.cols();
   Eigen::Index num_rows = 0;
   for (const auto& part : parts) {
-    if (num_rows > 0 && part.embeddings.cols() != parts[0].embeddings.cols()) {
+    if (part.embeddings.cols() != dim) {
       ThrowError("collection ", name, " mixes embedding dimensions");
     }
     num_rows += part.embeddings.rows();
   }
-  merged.embeddings.resize(num_rows, parts.front().embeddings.cols());
+  merged.embeddings.resize(num_rows, dim);
   Eigen::Index offset = 0;
   for (const auto& part : parts) {
     const int first = static_cast<int>(offset);
