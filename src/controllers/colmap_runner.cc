@@ -15,6 +15,7 @@
 
 #include "util/error.h"
 #include "util/file.h"
+#include "util/interrupt.h"
 #include "util/string.h"
 
 extern char** environ;
@@ -136,6 +137,7 @@ int RunProcess(const std::string& exe,
     close(pipe_fds[0]);
     ThrowError("cannot run ", exe, ": ", std::strerror(spawn_error));
   }
+  SetInterruptibleChild(pid);
 
   std::string captured;
   std::string partial_line;
@@ -160,6 +162,7 @@ int RunProcess(const std::string& exe,
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  SetInterruptibleChild(0);
   if (output != nullptr) {
     *output = std::move(captured);
   }
@@ -221,6 +224,13 @@ std::string ColmapRunner::Run(const std::string& command,
       });
   if (log.is_open()) {
     log << output << "[exit " << status << "]\n";
+  }
+  if (status != 0 && PendingInterrupt() != 0) {
+    ThrowError("interrupted (signal ",
+               PendingInterrupt(),
+               ") while colmap ",
+               command,
+               " ran");
   }
   if (status != 0) {
     const std::string why =

@@ -8,7 +8,10 @@
 #include "controllers/vocab_tree_pairing.h"
 #include "gcn/model_file.h"
 #include "retrieval/knn_pairing.h"
+#include "scene/database_working_copy.h"
 #include "util/error.h"
+#include "util/file_lock.h"
+#include "util/interrupt.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
@@ -100,6 +103,11 @@ std::unique_ptr<PairGenerator> CreatePairGenerator(
 GcnMatchingReport RunGcnMatching(const std::string& database_path,
                                  const GcnMatchingOptions& options,
                                  const std::vector<std::string>& colmap_args) {
+  // Refused before minutes of pairing: a database we cannot replace, or one
+  // that another gcn_matcher is working on (the lock spans the whole run).
+  const std::string real_path = ResolveDatabasePath(database_path);
+  CheckDatabaseWritable(real_path);
+  const ScopedFileLock lock(DatabaseLockPath(real_path), database_path);
   GcnMatchingReport report;
   report.pairing = options.pairing;
   const Timer pairing_timer;
@@ -116,6 +124,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
     }
     const std::unique_ptr<PairGenerator> generator =
         CreatePairGenerator(options, database);
+    StopPointForTests("pairing");
     pairs = generator->AllPairs();
     // The GCN's scores go into the pairs file for users to inspect.
     if (const auto* gcn =
@@ -141,6 +150,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   matching_options.pairs_path = options.pairs_path;
   matching_options.colmap_args = colmap_args;
   matching_options.scores = scores;
+  matching_options.block_size = options.block_size;
   std::cerr << "gcn_matcher: " << pairs.size() << " pairs from "
             << options.pairing << " pairing of " << report.num_images
             << " images; matching with COLMAP " << colmap.Version() << "\n";

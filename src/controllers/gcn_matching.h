@@ -52,6 +52,10 @@ struct GcnMatchingOptions {
   // Threads for embedding and kNN; -1 uses all cores.
   int num_threads = -1;
 
+  // Pairs per COLMAP matching run; each run commits, so an interrupted
+  // matching loses at most one block.
+  int block_size = 1225;
+
   // Where the chosen pairs are written; empty: "<database_path>.pairs.txt".
   std::string pairs_path = "";
 

@@ -1,7 +1,5 @@
 #include "controllers/pair_matching.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -11,8 +9,11 @@
 
 #include "feature/pairs_io.h"
 #include "scene/database.h"
+#include "scene/database_working_copy.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/file_lock.h"
+#include "util/interrupt.h"
 #include "util/string.h"
 #include "util/timer.h"
 
@@ -20,18 +21,6 @@ namespace colmap_gcn {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Identifies the state of the user's database so that a partial copy is only
-// resumed when the original has not changed since the copy was made.
-std::string FileFingerprint(const std::string& path) {
-  struct stat info;
-  if (stat(path.c_str(), &info) != 0) {
-    ThrowError("cannot stat ", path);
-  }
-  return std::to_string(info.st_size) + " " +
-         std::to_string(info.st_mtim.tv_sec) + "." +
-         std::to_string(info.st_mtim.tv_nsec);
-}
 
 int MinNumInliersFromArgs(const std::vector<std::string>& args,
                           int default_value) {
@@ -56,38 +45,89 @@ std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometriesById(
   return by_id;
 }
 
-// Prepares the working copy; returns true when an earlier partial run is
-// resumed.
-bool PrepareWorkingCopy(const std::string& database_path,
-                        const std::string& work_path) {
-  const std::string source_path = work_path + ".source";
-  const std::string fingerprint = FileFingerprint(database_path);
-  if (ExistsFile(work_path) && ExistsFile(source_path) &&
-      StringTrim(ReadTextFile(source_path)) == fingerprint) {
-    return true;
+// Matches the pairs in blocks on a copy of the database that replaces it
+// once everything is matched. Each block is one COLMAP run that commits
+// into the copy, so an interrupted run resumes with at most one block lost.
+void MatchOnWorkingCopy(const ColmapRunner& colmap,
+                        const std::string& database_path,
+                        const std::vector<DatabaseImage>& images,
+                        const PairMatchingOptions& options,
+                        std::vector<ImagePair>* pairs,
+                        PairMatchingSummary* summary) {
+  DatabaseWorkingCopy working_copy(database_path);
+  const std::string& work_path = working_copy.Path();
+  if (working_copy.Resumed()) {
+    const Database copy(work_path);
+    const auto matched = GeometriesById(copy);
+    const size_t num_pairs = pairs->size();
+    pairs->erase(std::remove_if(pairs->begin(),
+                                pairs->end(),
+                                [&](const ImagePair& pair) {
+                                  return matched.count(ImagePairToPairId(
+                                             pair.first, pair.second)) > 0;
+                                }),
+                 pairs->end());
+    summary->num_already_matched += num_pairs - pairs->size();
+    std::cerr << "gcn_matcher: resuming the interrupted matching kept in "
+              << work_path << " (" << num_pairs - pairs->size() << " of "
+              << num_pairs << " pairs were matched already)\n";
+  }
+  const std::string todo_path = work_path + ".pairs.txt";
+  const size_t block_size = static_cast<size_t>(options.block_size);
+  const size_t num_blocks = (pairs->size() + block_size - 1) / block_size;
+  const Timer timer;
+  for (size_t block = 0; block < num_blocks; ++block) {
+    const auto begin = pairs->begin() + block * block_size;
+    const auto end =
+        pairs->begin() + std::min(pairs->size(), (block + 1) * block_size);
+    if (num_blocks > 1) {
+      std::cerr << "gcn_matcher: matching block " << block + 1 << "/"
+                << num_blocks << " (" << end - begin << " pairs)\n";
+    }
+    WritePairsFile(todo_path, std::vector<ImagePair>(begin, end), images);
+    std::vector<std::string> args = {"--database_path",
+                                     work_path,
+                                     "--match_list_path",
+                                     todo_path,
+                                     "--match_type",
+                                     "pairs"};
+    args.insert(
+        args.end(), options.colmap_args.begin(), options.colmap_args.end());
+    try {
+      colmap.Run("matches_importer", args);
+    } catch (const Error& error) {
+      ThrowError(error.what(),
+                 " -- ",
+                 database_path,
+                 " is unchanged; the pairs matched so far are kept in ",
+                 work_path,
+                 " and the next run resumes from there");
+    }
+    if (block + 1 < num_blocks) StopPointForTests("matching");
+  }
+  summary->matching_seconds = timer.ElapsedSeconds();
+  {
+    const CriticalSection critical;
+    working_copy.Commit();
   }
   std::error_code ec;
-  fs::copy_file(
-      database_path, work_path, fs::copy_options::overwrite_existing, ec);
-  if (ec) {
-    fs::remove(work_path, ec);
-    ThrowError(
-        "cannot copy ", database_path, " to ", work_path, ": ", ec.message());
-  }
-  WriteFileAtomically(source_path, fingerprint + "\n");
-  return false;
+  std::filesystem::remove(todo_path, ec);
 }
 
 }  // namespace
 
-bool PairMatchingOptions::Check() const { return min_num_inliers >= 0; }
+bool PairMatchingOptions::Check() const {
+  return min_num_inliers >= 0 && block_size >= 1;
+}
 
 PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
                                     const std::string& database_path,
                                     const std::vector<ImagePair>& pairs,
                                     const PairMatchingOptions& options) {
   if (!options.Check()) {
-    ThrowError("invalid matching options: min_num_inliers must be >= 0");
+    ThrowError(
+        "invalid matching options: min_num_inliers must be >= 0 and "
+        "block_size >= 1");
   }
   if (!options.scores.empty() && options.scores.size() != pairs.size()) {
     ThrowError("matching options: ",
@@ -96,6 +136,10 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
                pairs.size(),
                " pairs");
   }
+  // Held for the whole run: a second gcn_matcher would otherwise resume
+  // this run's copy while COLMAP still writes into it.
+  const ScopedFileLock lock(
+      DatabaseLockPath(ResolveDatabasePath(database_path)), database_path);
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
@@ -151,48 +195,8 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   WritePairsFile(summary.pairs_path, all_pairs, images, all_scores);
 
   if (!unmatched_pairs.empty()) {
-    const std::string work_path = database_path + ".gcn-partial";
-    const bool resumed = PrepareWorkingCopy(database_path, work_path);
-    if (resumed) {
-      std::cerr << "Resuming the interrupted matching kept in " << work_path
-                << "\n";
-    }
-    const std::string todo_path = work_path + ".pairs.txt";
-    WritePairsFile(todo_path, unmatched_pairs, images);
-    std::vector<std::string> args = {"--database_path",
-                                     work_path,
-                                     "--match_list_path",
-                                     todo_path,
-                                     "--match_type",
-                                     "pairs"};
-    args.insert(
-        args.end(), options.colmap_args.begin(), options.colmap_args.end());
-    const Timer timer;
-    try {
-      colmap.Run("matches_importer", args);
-    } catch (const Error& error) {
-      ThrowError(error.what(),
-                 " -- ",
-                 database_path,
-                 " is unchanged; the partial work in ",
-                 work_path,
-                 " resumes on the next run");
-    }
-    summary.matching_seconds = timer.ElapsedSeconds();
-    // Validate the result before it replaces the user's file.
-    { const Database check(work_path); }
-    std::error_code ec;
-    fs::rename(work_path, database_path, ec);
-    if (ec) {
-      ThrowError("cannot replace ",
-                 database_path,
-                 " with ",
-                 work_path,
-                 ": ",
-                 ec.message());
-    }
-    fs::remove(work_path + ".source", ec);
-    fs::remove(todo_path, ec);
+    MatchOnWorkingCopy(
+        colmap, database_path, images, options, &unmatched_pairs, &summary);
   }
 
   const Database database(database_path);

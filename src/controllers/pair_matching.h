@@ -21,6 +21,11 @@ struct PairMatchingOptions {
   // pairs file's third column, which COLMAP ignores.
   std::vector<float> scores;
 
+  // Pairs per COLMAP run. Each run commits its matches, so an interrupted
+  // matching resumes having lost at most one block; COLMAP 3.8 batches its
+  // own database writes in blocks of 1225 pairs.
+  int block_size = 1225;
+
   // Forwarded verbatim to `colmap matches_importer` (the user's
   // --SiftMatching.* options).
   std::vector<std::string> colmap_args;
@@ -44,11 +49,12 @@ struct PairMatchingSummary {
 };
 
 // Matches and verifies the pairs with COLMAP's own matcher
-// (`matches_importer --match_type pairs`). Pairs already verified in the
-// database are skipped, so an interrupted run resumes. The user's database
-// is never left half-written: COLMAP works on a copy beside it
-// ("<database>.gcn-partial"), which replaces the original atomically on
-// success and is kept for resuming on failure.
+// (`matches_importer --match_type pairs`), in blocks of
+// options.block_size. Pairs already verified in the database are skipped.
+// The user's database is never left half-written: COLMAP works on a
+// DatabaseWorkingCopy, which replaces the database atomically on success
+// and is resumed after an interruption. Holds the database's lock
+// (DatabaseLockPath) while it runs.
 PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
                                     const std::string& database_path,
                                     const std::vector<ImagePair>& pairs,

@@ -11,6 +11,7 @@
 
 #include "retrieval/embedding_cache.h"
 #include "retrieval/hash.h"
+#include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/string.h"
@@ -51,28 +52,6 @@ std::string SqlQuote(const std::string& str) {
   return quoted + "'";
 }
 
-// A consistent copy of a database (WAL content included) that COLMAP can
-// open read-write without touching the user's file: COLMAP opens databases
-// read-write even to read them, and its WAL files beside a database that
-// gcn_matcher later replaces atomically would corrupt it.
-void SnapshotDatabase(const std::string& path, const std::string& copy_path) {
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) !=
-      SQLITE_OK) {
-    sqlite3_close(db);
-    ThrowError("cannot open ", path);
-  }
-  char* message = nullptr;
-  const std::string sql = "VACUUM INTO " + SqlQuote(copy_path) + ";";
-  const int code = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &message);
-  const std::string why = message != nullptr ? message : "";
-  sqlite3_free(message);
-  sqlite3_close(db);
-  if (code != SQLITE_OK) {
-    ThrowError("cannot copy ", path, " to ", copy_path, ": ", why);
-  }
-}
-
 // One database holding all images and descriptors of the inputs.
 void MergeDatabases(const std::vector<std::string>& database_paths,
                     const std::string& merged_path) {
@@ -85,7 +64,7 @@ void MergeDatabases(const std::vector<std::string>& database_paths,
                  "vocab_tree_builder");
     }
   }
-  SnapshotDatabase(database_paths[0], merged_path);
+  CopyDatabase(database_paths[0], merged_path);
   sqlite3* db = nullptr;
   if (sqlite3_open_v2(
           merged_path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) !=
@@ -144,7 +123,7 @@ void BuildVocabTree(const ColmapRunner& colmap,
   if (database_paths.size() > 1) {
     MergeDatabases(database_paths, database_path);
   } else {
-    SnapshotDatabase(database_paths[0], database_path);
+    CopyDatabase(database_paths[0], database_path);
   }
   size_t num_descriptors = 0;
   {
@@ -273,7 +252,7 @@ VocabTreePairGenerator::VocabTreePairGenerator(
   // so that no WAL file of its appears beside the user's database.
   TemporaryDirectory temp("colmap_gcn_vocab_tree");
   const std::string snapshot = JoinPaths(temp.Path(), "database.db");
-  SnapshotDatabase(database.Path(), snapshot);
+  CopyDatabase(database.Path(), snapshot);
   const std::string output = colmap.Run("vocab_tree_retriever",
                                         {"--database_path",
                                          snapshot,

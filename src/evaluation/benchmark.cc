@@ -20,6 +20,7 @@
 #include "evaluation/pair_labels.h"
 #include "evaluation/report.h"
 #include "feature/pairs_io.h"
+#include "scene/database_copy.h"
 #include "scene/reconstruction_stats.h"
 #include "synthetic/pair_overlap.h"
 #include "util/error.h"
@@ -57,18 +58,14 @@ void RemovePath(const std::string& path) {
   fs::remove_all(path, ec);
 }
 
-void CopyDatabase(const std::string& from, const std::string& to) {
-  for (const char* suffix : {"",
-                             "-wal",
-                             "-shm",
-                             ".gcn-partial",
-                             ".gcn-partial.source",
-                             ".gcn-partial.pairs.txt"}) {
-    RemovePath(to + suffix);
+// A fresh database for one method: the scene's extracted base, with no
+// working copy of an earlier interrupted run beside it.
+void CopyBaseDatabase(const std::string& from, const std::string& to) {
+  for (const char* suffix :
+       {".gcn-partial", ".gcn-partial.source", ".gcn-partial.pairs.txt"}) {
+    RemoveDatabaseFiles(to + suffix);
   }
-  std::error_code ec;
-  fs::copy_file(from, to, ec);
-  if (ec) ThrowError("cannot copy ", from, " to ", to, ": ", ec.message());
+  CopyDatabase(from, to);
 }
 
 int MinNumInliers(const std::vector<std::string>& args) {
@@ -423,7 +420,7 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
   }
 
   const std::string db = JoinPaths(dir, "database.db");
-  CopyDatabase(scene.base_db, db);
+  CopyBaseDatabase(scene.base_db, db);
   PairMatchingOptions matching_options;
   matching_options.pairs_path = JoinPaths(dir, "pairs.txt");
   matching_options.colmap_args = options_.matching_args;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "scene/database.h"
+#include "scene/database_copy.h"
 #include "scene/reconstruction_stats.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -38,15 +39,8 @@ Reconstruction TriangulateOnGroundTruth(const ColmapRunner& colmap,
   const std::string input_path = JoinPaths(work_dir, "gt_input");
   const std::string output_path = JoinPaths(work_dir, "triangulated");
   std::error_code ec;
-  fs::remove(work_db, ec);
-  fs::remove(work_db + "-wal", ec);
-  fs::remove(work_db + "-shm", ec);
   fs::remove_all(output_path, ec);
-  fs::copy_file(database_path, work_db, ec);
-  if (ec) {
-    ThrowError(
-        "cannot copy ", database_path, " to ", work_db, ": ", ec.message());
-  }
+  CopyDatabase(database_path, work_db);
 
   Reconstruction input;
   {

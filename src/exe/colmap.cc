@@ -19,6 +19,7 @@
 #include "exe/gcn_train.h"
 #include "exe/gcn_vocab_tree_builder.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace colmap_gcn {
 namespace {
@@ -69,6 +70,7 @@ int RunColmapFrontend(int argc, char** argv) {
     const std::string command = argc > 1 ? argv[1] : "help";
     for (const auto& [name, run] : OurCommands()) {
       if (command == name) {
+        InstallInterruptHandlers();
         // Commands see argv without the program name, like COLMAP's.
         return run(argc - 1, argv + 1);
       }
@@ -77,12 +79,10 @@ int RunColmapFrontend(int argc, char** argv) {
       return PrintHelp(argc, argv);
     }
     return ExecRealColmap(argc, argv);
-  } catch (const Error& error) {
-    std::cerr << "ERROR: " << error.what() << std::endl;
-    return 1;
   } catch (const std::exception& error) {
     std::cerr << "ERROR: " << error.what() << std::endl;
-    return 1;
+    // Interrupted runs exit as a shell reports a signal (130 for Ctrl-C).
+    return PendingInterrupt() != 0 ? 128 + PendingInterrupt() : 1;
   }
 }
 

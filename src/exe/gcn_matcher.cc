@@ -48,6 +48,10 @@ void AddGcnMatchingOptions(OptionManager* manager,
   manager->AddDefaultOption("GcnMatching.num_threads",
                             &options->num_threads,
                             "threads for embedding and kNN (-1: all cores)");
+  manager->AddDefaultOption(
+      "GcnMatching.block_size",
+      &options->block_size,
+      "pairs per COLMAP matching run (each commits; resume granularity)");
   manager->AddDefaultOption("GcnMatching.pairs_path",
                             &options->pairs_path,
                             "where the chosen pairs are written");

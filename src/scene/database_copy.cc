@@ -1,0 +1,158 @@
+#include "scene/database_copy.h"
+
+#include <fcntl.h>
+#include <sqlite3.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "util/error.h"
+
+namespace colmap_gcn {
+namespace {
+
+// Waiting this long for another connection's lock before giving up keeps a
+// briefly busy database usable without hanging on one that stays busy.
+const int kBusyTimeoutMs = 5000;
+
+class Connection {
+ public:
+  Connection(const std::string& path, const int flags) : path_(path) {
+    if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+      const std::string why =
+          db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
+      sqlite3_close(db_);
+      ThrowError("cannot open database ", path, ": ", why);
+    }
+    sqlite3_busy_timeout(db_, kBusyTimeoutMs);
+  }
+  ~Connection() { sqlite3_close(db_); }
+  Connection(const Connection&) = delete;
+  Connection& operator=(const Connection&) = delete;
+
+  sqlite3* Get() const { return db_; }
+  std::string Error() const { return sqlite3_errmsg(db_); }
+
+  // The first column of the first row of sql, "" for no row.
+  std::string QueryText(const char* sql) const {
+    sqlite3_stmt* stmt = nullptr;
+    if (sqlite3_prepare_v2(db_, sql, -1, &stmt, nullptr) != SQLITE_OK) {
+      ThrowError("database ", path_, ": ", sql, ": ", Error());
+    }
+    std::string text;
+    const int rc = sqlite3_step(stmt);
+    if (rc == SQLITE_ROW) {
+      const unsigned char* value = sqlite3_column_text(stmt, 0);
+      if (value != nullptr) text = reinterpret_cast<const char*>(value);
+    } else if (rc != SQLITE_DONE) {
+      const std::string why = Error();
+      sqlite3_finalize(stmt);
+      ThrowError("database ", path_, ": ", sql, ": ", why);
+    }
+    sqlite3_finalize(stmt);
+    return text;
+  }
+
+ private:
+  std::string path_;
+  sqlite3* db_ = nullptr;
+};
+
+}  // namespace
+
+void RemoveDatabaseFiles(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  for (const char* suffix : kDatabaseSideFileSuffixes) {
+    std::filesystem::remove(path + suffix, ec);
+  }
+}
+
+void CopyDatabase(const std::string& source_path,
+                  const std::string& target_path) {
+  struct stat source_info;
+  if (stat(source_path.c_str(), &source_info) != 0) {
+    ThrowError("cannot copy ", source_path, ": ", std::strerror(errno));
+  }
+  RemoveDatabaseFiles(target_path);
+  try {
+    const Connection source(source_path, SQLITE_OPEN_READONLY);
+    const Connection target(target_path,
+                            SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+    sqlite3_backup* backup =
+        sqlite3_backup_init(target.Get(), "main", source.Get(), "main");
+    if (backup == nullptr) {
+      ThrowError("cannot copy ",
+                 source_path,
+                 " to ",
+                 target_path,
+                 ": ",
+                 target.Error());
+    }
+    int rc = SQLITE_OK;
+    do {
+      rc = sqlite3_backup_step(backup, -1);
+      if (rc == SQLITE_BUSY || rc == SQLITE_LOCKED) sqlite3_sleep(50);
+    } while (rc == SQLITE_OK || rc == SQLITE_BUSY || rc == SQLITE_LOCKED);
+    sqlite3_backup_finish(backup);
+    if (rc != SQLITE_DONE) {
+      ThrowError("cannot copy ",
+                 source_path,
+                 " to ",
+                 target_path,
+                 ": ",
+                 sqlite3_errstr(rc));
+    }
+  } catch (...) {
+    RemoveDatabaseFiles(target_path);
+    throw;
+  }
+  chmod(target_path.c_str(), source_info.st_mode & 07777);
+}
+
+void CheckpointDatabase(const std::string& path) {
+  const Connection db(path, SQLITE_OPEN_READWRITE);
+  // Not in WAL mode: nothing lives outside the main file once open.
+  if (db.QueryText("PRAGMA journal_mode;") != "wal") return;
+  int log_frames = 0;
+  int checkpointed_frames = 0;
+  const int rc = sqlite3_wal_checkpoint_v2(db.Get(),
+                                           nullptr,
+                                           SQLITE_CHECKPOINT_TRUNCATE,
+                                           &log_frames,
+                                           &checkpointed_frames);
+  if (rc == SQLITE_BUSY || rc == SQLITE_LOCKED) {
+    ThrowError(path,
+               " is in use by another program (its write-ahead log ",
+               path,
+               "-wal could not be folded in); close it and run again");
+  }
+  if (rc != SQLITE_OK) {
+    ThrowError("cannot checkpoint ", path, ": ", db.Error());
+  }
+}
+
+std::string CheckDatabaseIntegrity(const std::string& path) {
+  try {
+    const Connection db(path, SQLITE_OPEN_READWRITE);
+    const std::string result = db.QueryText("PRAGMA quick_check;");
+    return result == "ok" ? "" : result;
+  } catch (const Error& error) {
+    return error.what();
+  }
+}
+
+void SyncFile(const std::string& path) {
+  const int fd = open(path.c_str(), O_RDONLY);
+  if (fd < 0 || fsync(fd) != 0) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) close(fd);
+    ThrowError("cannot flush ", path, " to disk: ", why);
+  }
+  close(fd);
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <string>
+
+namespace colmap_gcn {
+
+// Whole-file operations on COLMAP's SQLite databases. They always go through
+// SQLite, never through plain file copies: COLMAP opens its databases in WAL
+// mode, so committed data can live in "<path>-wal" until a checkpoint, and a
+// "-wal" file left beside the wrong main file is replayed onto it.
+
+// The side files SQLite may keep beside a database: "-wal", "-shm",
+// "-journal".
+const char* const kDatabaseSideFileSuffixes[] = {"-wal", "-shm", "-journal"};
+
+// Removes path and its side files (missing files are fine).
+void RemoveDatabaseFiles(const std::string& path);
+
+// A consistent snapshot of source (committed WAL content included) written to
+// target with SQLite's online backup API. Whatever was at target, including
+// stale side files of an earlier copy, is removed first. The copy gets the
+// source's permission bits. Throws Error naming both paths on failure.
+void CopyDatabase(const std::string& source_path,
+                  const std::string& target_path);
+
+// Folds the committed content of path's write-ahead log into the main file
+// and truncates the log (read-write; a no-op for databases not in WAL mode).
+// Throws Error when another program keeps the log busy.
+void CheckpointDatabase(const std::string& path);
+
+// SQLite's structural check (PRAGMA quick_check) on the database opened
+// read-write, so that a write-ahead log of its own is replayed first.
+// Returns "" when it is sound, else the first problem SQLite reports.
+std::string CheckDatabaseIntegrity(const std::string& path);
+
+// Flushes path's contents to disk (fsync), so a rename that publishes it
+// survives a power loss; throws Error on failure.
+void SyncFile(const std::string& path);
+
+}  // namespace colmap_gcn

@@ -1,0 +1,318 @@
+// Copying, checkpointing and replacing databases in the states COLMAP leaves
+// them in: committed data still in "-wal" after a killed writer, stale side
+// files of an earlier copy, damaged copies, symlinks, read-only files.
+
+#include "scene/database_copy.h"
+
+#include <sqlite3.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <functional>
+
+#include <gtest/gtest.h>
+
+#include "scene/colmap_scene_fixture.h"
+#include "scene/database.h"
+#include "scene/database_working_copy.h"
+#include "test_utils.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/file_lock.h"
+
+namespace colmap_gcn {
+namespace {
+
+namespace fs = std::filesystem;
+using test::ExecuteSql;
+using test::kColmap38Schema;
+using test::QuerySqlInt;
+
+void ExpectErrorContaining(const std::function<void()>& function,
+                           const std::string& expected) {
+  try {
+    function();
+    ADD_FAILURE() << "expected an Error containing '" << expected << "'";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+// A COLMAP-layout database in WAL mode with `num_images` images.
+void CreateDatabase(const std::string& path, const int num_images) {
+  ExecuteSql(path, std::string("PRAGMA journal_mode=WAL;") + kColmap38Schema);
+  for (int i = 1; i <= num_images; ++i) {
+    ExecuteSql(path,
+               "INSERT INTO cameras VALUES (" + std::to_string(i) +
+                   ", 0, 640, 480, NULL, 0);"
+                   "INSERT INTO images (image_id, name, camera_id) VALUES (" +
+                   std::to_string(i) + ", 'img" + std::to_string(i) +
+                   ".jpg', " + std::to_string(i) + ");");
+  }
+}
+
+int64_t NumGeometries(const std::string& path) {
+  return QuerySqlInt(path, "SELECT COUNT(*) FROM two_view_geometries;");
+}
+
+// The files a writer killed after committing `sql` leaves behind: its
+// committed transactions are only in "<path>-wal". Made by copying the files
+// while the writer's connection is still open (so nothing is checkpointed).
+void LeaveCommittedDataInWal(const std::string& base_path,
+                             const std::string& sql,
+                             const std::string& crashed_path) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(base_path.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db,
+                         "PRAGMA journal_mode=WAL; PRAGMA "
+                         "wal_autocheckpoint=0;",
+                         nullptr,
+                         nullptr,
+                         nullptr),
+            SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  for (const std::string suffix : {"", "-wal", "-shm"}) {
+    fs::copy_file(base_path + suffix,
+                  crashed_path + suffix,
+                  fs::copy_options::overwrite_existing);
+  }
+  sqlite3_close(db);
+  ASSERT_GT(fs::file_size(crashed_path + "-wal"), 0u);
+}
+
+const char* const kTwoGeometries =
+    "INSERT INTO two_view_geometries (pair_id, rows, cols, config) VALUES "
+    "(2147483649, 0, 2, 2), (2147483650, 0, 2, 2);";
+
+class DatabaseFiles : public testing::Test {
+ protected:
+  void SetUp() override {
+    base_ = JoinPaths(dir_.Path(), "base.db");
+    CreateDatabase(base_, 3);
+    crashed_ = JoinPaths(dir_.Path(), "crashed.db");
+    const std::string writer = JoinPaths(dir_.Path(), "writer.db");
+    fs::copy_file(base_, writer);
+    LeaveCommittedDataInWal(writer, kTwoGeometries, crashed_);
+  }
+
+  TemporaryDirectory dir_{"colmap_gcn_database_copy"};
+  std::string base_;
+  std::string crashed_;
+};
+
+TEST_F(DatabaseFiles, ThePlainMainFileLacksWhatTheWalHolds) {
+  // Why a file copy is wrong: the main file alone has no geometries.
+  const std::string main_only = JoinPaths(dir_.Path(), "main_only.db");
+  fs::copy_file(crashed_, main_only);
+  EXPECT_EQ(NumGeometries(main_only), 0);
+  EXPECT_EQ(NumGeometries(crashed_), 2);
+}
+
+TEST_F(DatabaseFiles, CopyKeepsCommittedWalContent) {
+  const std::string copy = JoinPaths(dir_.Path(), "copy.db");
+  CopyDatabase(crashed_, copy);
+  EXPECT_FALSE(ExistsFile(copy + "-wal") && fs::file_size(copy + "-wal") > 0);
+  EXPECT_EQ(NumGeometries(copy), 2);
+  EXPECT_EQ(CheckDatabaseIntegrity(copy), "");
+}
+
+TEST_F(DatabaseFiles, CopyRemovesStaleSideFilesOfTheTarget) {
+  // The "-wal" of another database beside the target would be replayed onto
+  // the fresh copy and corrupt it.
+  const std::string copy = JoinPaths(dir_.Path(), "copy.db");
+  fs::copy_file(crashed_ + "-wal", copy + "-wal");
+  fs::copy_file(crashed_ + "-shm", copy + "-shm");
+  CopyDatabase(base_, copy);
+  EXPECT_EQ(CheckDatabaseIntegrity(copy), "");
+  EXPECT_EQ(NumGeometries(copy), 0);
+  EXPECT_EQ(QuerySqlInt(copy, "SELECT COUNT(*) FROM images;"), 3);
+}
+
+TEST_F(DatabaseFiles, CopyKeepsThePermissionBits) {
+  chmod(base_.c_str(), 0640);
+  const std::string copy = JoinPaths(dir_.Path(), "copy.db");
+  CopyDatabase(base_, copy);
+  struct stat info;
+  ASSERT_EQ(stat(copy.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 0777, 0640u);
+}
+
+TEST_F(DatabaseFiles, CopyOfAMissingDatabaseFails) {
+  ExpectErrorContaining(
+      [&] { CopyDatabase(JoinPaths(dir_.Path(), "none.db"), base_ + "2"); },
+      "none.db");
+}
+
+TEST_F(DatabaseFiles, CheckpointFoldsTheWalIntoTheMainFile) {
+  CheckpointDatabase(crashed_);
+  const std::string main_only = JoinPaths(dir_.Path(), "main_only.db");
+  fs::copy_file(crashed_, main_only);
+  EXPECT_EQ(NumGeometries(main_only), 2);
+  EXPECT_TRUE(!ExistsFile(crashed_ + "-wal") ||
+              fs::file_size(crashed_ + "-wal") == 0);
+}
+
+TEST_F(DatabaseFiles, IntegrityCheckFindsDamage) {
+  // Enough rows for several pages, then garbage over an inner page.
+  std::string sql = "BEGIN;";
+  for (int i = 0; i < 2000; ++i) {
+    sql +=
+        "INSERT INTO two_view_geometries (pair_id, rows, cols, config) "
+        "VALUES (" +
+        std::to_string(100000 + i) + ", 0, 2, 2);";
+  }
+  ExecuteSql(base_, sql + "COMMIT; PRAGMA wal_checkpoint(TRUNCATE);");
+  EXPECT_EQ(CheckDatabaseIntegrity(base_), "");
+  {
+    FILE* file = std::fopen(base_.c_str(), "r+b");
+    ASSERT_NE(file, nullptr);
+    const size_t size = fs::file_size(base_);
+    std::fseek(file, static_cast<long>(size / 2), SEEK_SET);
+    const std::string garbage(4096, '\x5a');
+    std::fwrite(garbage.data(), 1, garbage.size(), file);
+    std::fclose(file);
+  }
+  EXPECT_NE(CheckDatabaseIntegrity(base_), "");
+  EXPECT_NE(CheckDatabaseIntegrity(JoinPaths(dir_.Path(), "absent.db")), "");
+}
+
+TEST_F(DatabaseFiles, WorkingCopyStartsFromTheWalAndReplacesOnCommit) {
+  {
+    DatabaseWorkingCopy copy(crashed_);
+    EXPECT_FALSE(copy.Resumed());
+    EXPECT_EQ(NumGeometries(copy.Path()), 2);
+    ExecuteSql(copy.Path(),
+               "INSERT INTO two_view_geometries (pair_id, rows, cols, config) "
+               "VALUES (4294967299, 0, 2, 2);");
+    copy.Commit();
+    EXPECT_FALSE(ExistsFile(copy.Path()));
+    EXPECT_FALSE(ExistsFile(crashed_ + ".gcn-partial.source"));
+  }
+  EXPECT_EQ(NumGeometries(crashed_), 3);
+  EXPECT_EQ(CheckDatabaseIntegrity(crashed_), "");
+}
+
+TEST_F(DatabaseFiles, WorkingCopyResumesWhileTheDatabaseIsUnchanged) {
+  std::string copy_path;
+  {
+    DatabaseWorkingCopy copy(base_);
+    copy_path = copy.Path();
+    ExecuteSql(copy_path,
+               "INSERT INTO two_view_geometries (pair_id, rows, cols, config) "
+               "VALUES (4294967299, 0, 2, 2);");
+    // Interrupted: no Commit.
+  }
+  {
+    DatabaseWorkingCopy copy(base_);
+    EXPECT_TRUE(copy.Resumed());
+    EXPECT_EQ(NumGeometries(copy.Path()), 1);
+  }
+  // The user changed the database meanwhile: the copy is made anew.
+  ExecuteSql(base_, kTwoGeometries);
+  DatabaseWorkingCopy copy(base_);
+  EXPECT_FALSE(copy.Resumed());
+  EXPECT_EQ(NumGeometries(copy.Path()), 2);
+}
+
+TEST_F(DatabaseFiles, WorkingCopyDiscardsADamagedCopy) {
+  std::string copy_path;
+  { copy_path = DatabaseWorkingCopy(base_).Path(); }
+  WriteFileAtomically(copy_path, std::string(8192, 'x'));
+  testing::internal::CaptureStderr();
+  DatabaseWorkingCopy copy(base_);
+  const std::string message = testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(copy.Resumed());
+  EXPECT_NE(message.find("discarding"), std::string::npos) << message;
+  EXPECT_EQ(CheckDatabaseIntegrity(copy.Path()), "");
+  EXPECT_EQ(QuerySqlInt(copy.Path(), "SELECT COUNT(*) FROM images;"), 3);
+}
+
+TEST_F(DatabaseFiles, WorkingCopyRefusesWhenTheDatabaseChangedMeanwhile) {
+  DatabaseWorkingCopy copy(base_);
+  ExecuteSql(base_, kTwoGeometries);
+  ExpectErrorContaining([&] { copy.Commit(); }, "changed by another program");
+  EXPECT_EQ(NumGeometries(base_), 2);
+  EXPECT_TRUE(ExistsFile(copy.Path()));
+}
+
+TEST_F(DatabaseFiles, WorkingCopyWritesThroughASymlink) {
+  const std::string link = JoinPaths(dir_.Path(), "link.db");
+  fs::create_symlink(base_, link);
+  {
+    DatabaseWorkingCopy copy(link);
+    EXPECT_EQ(copy.DatabasePath(), fs::canonical(base_).string());
+    ExecuteSql(copy.Path(), kTwoGeometries);
+    copy.Commit();
+  }
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(NumGeometries(base_), 2);
+}
+
+TEST_F(DatabaseFiles, ReadOnlyDatabaseOrFolderIsRefusedUpFront) {
+  chmod(base_.c_str(), 0444);
+  ExpectErrorContaining([&] { CheckDatabaseWritable(base_); },
+                        "is read-only (mode 0444)");
+  ExpectErrorContaining([&] { DatabaseWorkingCopy copy(base_); }, "read-only");
+  EXPECT_FALSE(ExistsFile(base_ + ".gcn-partial"));
+  chmod(base_.c_str(), 0644);
+
+  const std::string folder = JoinPaths(dir_.Path(), "locked");
+  CreateDirIfNotExists(folder);
+  const std::string inside = JoinPaths(folder, "db.db");
+  CreateDatabase(inside, 1);
+  chmod(folder.c_str(), 0555);
+  ExpectErrorContaining([&] { CheckDatabaseWritable(inside); },
+                        "folder " + folder);
+  chmod(folder.c_str(), 0755);
+}
+
+TEST_F(DatabaseFiles, MissingDatabaseIsNamed) {
+  ExpectErrorContaining(
+      [&] { ResolveDatabasePath(JoinPaths(dir_.Path(), "none.db")); },
+      "none.db does not exist");
+  const std::string dangling = JoinPaths(dir_.Path(), "dangling.db");
+  fs::create_symlink(JoinPaths(dir_.Path(), "gone.db"), dangling);
+  ExpectErrorContaining([&] { ResolveDatabasePath(dangling); },
+                        "dangling.db does not exist");
+}
+
+// Runs fn in a child process; returns its exit code.
+int InChildProcess(const std::function<int()>& fn) {
+  const pid_t pid = fork();
+  if (pid == 0) _exit(fn());
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST_F(DatabaseFiles, LockKeepsOtherProcessesOut) {
+  const std::string lock_path = DatabaseLockPath(base_);
+  auto try_lock = [&] {
+    try {
+      ScopedFileLock lock(lock_path, "db.db");
+      return 0;
+    } catch (const Error& error) {
+      const std::string message = error.what();
+      return message.find("another gcn_matcher is using db.db (pid " +
+                          std::to_string(getppid())) != std::string::npos
+                 ? 1
+                 : 2;
+    }
+  };
+  {
+    ScopedFileLock lock(lock_path, "db.db");
+    // Re-entrant in this process, exclusive across processes.
+    { ScopedFileLock again(lock_path, "db.db"); }
+    EXPECT_EQ(InChildProcess(try_lock), 1);
+  }
+  EXPECT_FALSE(ExistsFile(lock_path));
+  EXPECT_EQ(InChildProcess(try_lock), 0);
+}
+
+}  // namespace
+}  // namespace colmap_gcn
