@@ -13,6 +13,7 @@
 #include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/interrupt.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -163,6 +164,7 @@ void DatabaseWorkingCopy::Commit() {
   }
   RemoveEmptySideFiles(copy_path_);
   SyncFile(copy_path_);
+  StopPointForTests("commit");
   std::error_code ec;
   fs::rename(copy_path_, database_path_, ec);
   if (ec) {

@@ -62,8 +62,10 @@ CriticalSection::~CriticalSection() {
 }
 
 void StopPointForTests(const char* name) {
+  static std::atomic<bool> stopped{false};
   const char* stop_at = std::getenv("COLMAP_GCN_STOP_AT");
-  if (stop_at != nullptr && std::strcmp(stop_at, name) == 0) {
+  if (stop_at != nullptr && std::strcmp(stop_at, name) == 0 &&
+      !stopped.exchange(true)) {
     raise(SIGSTOP);
   }
 }

@@ -28,8 +28,8 @@ class CriticalSection {
 };
 
 // Test hook: when the environment variable COLMAP_GCN_STOP_AT equals name,
-// the process stops itself (SIGSTOP) here, so that tests can interrupt a
-// run at an exact step and resume or kill it.
+// the process stops itself (SIGSTOP) the first time it passes here, so
+// that tests can interrupt a run at an exact step and resume or kill it.
 void StopPointForTests(const char* name);
 
 }  // namespace colmap_gcn

@@ -2,6 +2,8 @@
 
 #include <sqlite3.h>
 
+#include <filesystem>
+
 #include <random>
 
 #include <opencv2/core.hpp>
@@ -149,6 +151,36 @@ void ExecuteSql(const std::string& database_path, const std::string& sql) {
     ThrowError("test: SQL failed: ", message);
   }
   sqlite3_close(db);
+}
+
+void LeaveCommittedDataInWal(const std::string& database_path,
+                             const std::string& sql,
+                             const std::string& crashed_path) {
+  namespace fs = std::filesystem;
+  sqlite3* db = nullptr;
+  if (sqlite3_open(database_path.c_str(), &db) != SQLITE_OK) {
+    sqlite3_close(db);
+    ThrowError("test: cannot open ", database_path);
+  }
+  const std::string all_sql =
+      "PRAGMA journal_mode=WAL; PRAGMA wal_autocheckpoint=0;" + sql;
+  char* error = nullptr;
+  if (sqlite3_exec(db, all_sql.c_str(), nullptr, nullptr, &error) !=
+      SQLITE_OK) {
+    const std::string message = error != nullptr ? error : "?";
+    sqlite3_free(error);
+    sqlite3_close(db);
+    ThrowError("test: SQL failed: ", message);
+  }
+  for (const std::string suffix : {"", "-wal", "-shm"}) {
+    fs::copy_file(database_path + suffix,
+                  crashed_path + suffix,
+                  fs::copy_options::overwrite_existing);
+  }
+  sqlite3_close(db);
+  if (fs::file_size(crashed_path + "-wal") == 0) {
+    ThrowError("test: nothing was left in ", crashed_path, "-wal");
+  }
 }
 
 }  // namespace test

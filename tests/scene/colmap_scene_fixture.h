@@ -37,5 +37,13 @@ int64_t QuerySqlInt(const std::string& database_path, const std::string& sql);
 // if needed. Throws Error on failure.
 void ExecuteSql(const std::string& database_path, const std::string& sql);
 
+// The files a writer killed after committing `sql` on database_path leaves
+// behind, written to crashed_path: its committed transactions are only in
+// "<crashed_path>-wal" (copied while the writer's connection is still open,
+// so nothing was checkpointed). Throws Error on failure.
+void LeaveCommittedDataInWal(const std::string& database_path,
+                             const std::string& sql,
+                             const std::string& crashed_path);
+
 }  // namespace test
 }  // namespace colmap_gcn

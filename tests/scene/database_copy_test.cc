@@ -28,6 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::ExecuteSql;
 using test::kColmap38Schema;
+using test::LeaveCommittedDataInWal;
 using test::QuerySqlInt;
 
 void ExpectErrorContaining(const std::function<void()>& function,
@@ -57,32 +58,6 @@ void CreateDatabase(const std::string& path, const int num_images) {
 
 int64_t NumGeometries(const std::string& path) {
   return QuerySqlInt(path, "SELECT COUNT(*) FROM two_view_geometries;");
-}
-
-// The files a writer killed after committing `sql` leaves behind: its
-// committed transactions are only in "<path>-wal". Made by copying the files
-// while the writer's connection is still open (so nothing is checkpointed).
-void LeaveCommittedDataInWal(const std::string& base_path,
-                             const std::string& sql,
-                             const std::string& crashed_path) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(base_path.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db,
-                         "PRAGMA journal_mode=WAL; PRAGMA "
-                         "wal_autocheckpoint=0;",
-                         nullptr,
-                         nullptr,
-                         nullptr),
-            SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr),
-            SQLITE_OK);
-  for (const std::string suffix : {"", "-wal", "-shm"}) {
-    fs::copy_file(base_path + suffix,
-                  crashed_path + suffix,
-                  fs::copy_options::overwrite_existing);
-  }
-  sqlite3_close(db);
-  ASSERT_GT(fs::file_size(crashed_path + "-wal"), 0u);
 }
 
 const char* const kTwoGeometries =
