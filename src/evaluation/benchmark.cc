@@ -18,6 +18,7 @@
 #include "evaluation/figures.h"
 #include "evaluation/method.h"
 #include "evaluation/pair_labels.h"
+#include "evaluation/pose_pair_filter.h"
 #include "evaluation/report.h"
 #include "feature/pairs_io.h"
 #include "scene/database_copy.h"
@@ -276,16 +277,34 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
         break;
       }
       case LabelSource::kGroundTruthTriangulation: {
-        const BenchmarkMethod exhaustive = ParseBenchmarkMethod("exhaustive");
-        MatchMethod(*scene, exhaustive);
+        std::string matched_db;
+        if (options_.label_pair_filter.Enabled()) {
+          Progress(name, "matching the pairs the pose filter keeps");
+          const LabelMatchingSummary summary =
+              MatchPosePairsForLabels(Colmap(*scene),
+                                      scene->base_db,
+                                      scene->gt,
+                                      options_.label_pair_filter,
+                                      options_.matching_args,
+                                      JoinPaths(labels_dir, "matching"));
+          Progress(name,
+                   "matched " + std::to_string(summary.num_pairs_matched) +
+                       " of " + std::to_string(summary.num_pairs_total) +
+                       " pairs for the labels");
+          matched_db = summary.database_path;
+        } else {
+          const BenchmarkMethod exhaustive = ParseBenchmarkMethod("exhaustive");
+          MatchMethod(*scene, exhaustive);
+          matched_db = JoinPaths(MethodDir(*scene, exhaustive), "database.db");
+        }
         Progress(name,
-                 "triangulating the exhaustive matches on the GT "
-                 "cameras (point_triangulator)");
+                 "triangulating the matches on the GT cameras "
+                 "(point_triangulator)");
         // The retrieval module's GT-camera labels (the same labels its
         // retrieval-quality tools use).
         scene->labels = ComputeGroundTruthCameraLabels(
             Colmap(*scene),
-            JoinPaths(MethodDir(*scene, exhaustive), "database.db"),
+            matched_db,
             scene->dataset.gt_path,
             JoinPaths(labels_dir, "gt_triangulation"));
         break;
@@ -747,6 +766,10 @@ bool BenchmarkOptions::Check() const {
 }
 
 BenchmarkResults RunBenchmark(const BenchmarkOptions& options) {
+  if (!options.label_pair_filter.Check()) {
+    ThrowError(
+        "--Benchmark.label_max_viewpoint_change_deg must be in [0, 180]");
+  }
   if (!options.Check()) {
     ThrowError(
         "invalid benchmark options: --datasets, --methods and "

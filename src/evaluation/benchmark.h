@@ -7,6 +7,7 @@
 
 #include "evaluation/alignment.h"
 #include "evaluation/labels.h"
+#include "evaluation/pose_pair_filter.h"
 #include "evaluation/results.h"
 #include "feature/pairing.h"
 #include "scene/database.h"
@@ -42,6 +43,13 @@ struct BenchmarkOptions {
 
   PairLabelOptions labels;
   PoseErrorOptions pose;
+
+  // Which pairs the labels of scenes with GT cameras are matched on. Off
+  // by default (every pair, the exhaustive method's matches); when enabled
+  // only the pairs the pose rule keeps are matched, in labels/matching/,
+  // and a skipped pair keeps what the triangulated tracks give it (in
+  // practice CT = 0: negative).
+  PosePairFilterOptions label_pair_filter;
 
   // Mapper threads; 1 makes mapper runs repeatable (COLMAP's own advice).
   int mapper_num_threads = 1;

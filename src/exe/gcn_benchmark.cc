@@ -50,6 +50,12 @@ int RunGcnBenchmark(int argc, char** argv) {
   manager.AddDefaultOption("Benchmark.tau_ct",
                            &options.labels.min_common_track_ratio,
                            "... or common-track ratio >= tau_ct");
+  manager.AddDefaultOption(
+      "Benchmark.label_max_viewpoint_change_deg",
+      &options.label_pair_filter.max_viewpoint_change_deg,
+      "labels of GT-camera scenes: match only pairs whose poses allow a "
+      "viewpoint change below this (degrees) at a common point; 0: all "
+      "pairs");
   manager.AddDefaultOption("Benchmark.max_rotation_error_deg",
                            &options.pose.max_rotation_error_deg,
                            "accurate camera: rotation error below this");

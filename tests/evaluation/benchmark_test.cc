@@ -4,12 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 
 #include "evaluation/common_tracks.h"
 #include "evaluation/ground_truth.h"
 #include "evaluation/json.h"
+#include "evaluation/pose_pair_filter.h"
 #include "scene/colmap_scene_fixture.h"
 #include "scene/reconstruction_stats.h"
 #include "synthetic/pair_overlap.h"
@@ -244,6 +246,55 @@ TEST_F(GcnBenchmarkEndToEnd, GroundTruthTriangulationAgreesWithOverlaps) {
           << pair.name1 << " " << pair.name2;
     }
   }
+}
+
+TEST_F(GcnBenchmarkEndToEnd, PoseFilteredLabelMatchingMatchesOnlyKeptPairs) {
+  Reconstruction gt;
+  gt.Read(JoinPaths(SceneDir(), "gt"));
+  ColmapRunnerOptions runner_options;
+  runner_options.show_progress = false;
+  const ColmapRunner colmap(runner_options);
+  // The threshold halfway up the scene's bounds, so that the rule keeps
+  // some pairs and skips others.
+  double max_bound = 0;
+  for (const auto& [id1, image1] : gt.images) {
+    for (const auto& [id2, image2] : gt.images) {
+      max_bound =
+          std::max(max_bound,
+                   MinViewpointChangeDeg(image1,
+                                         gt.cameras.at(image1.camera_id),
+                                         image2,
+                                         gt.cameras.at(image2.camera_id)));
+    }
+  }
+  ASSERT_GT(max_bound, 0.0) << "no pair of this scene can be skipped";
+  PosePairFilterOptions options;
+  options.max_viewpoint_change_deg = max_bound / 2;
+  const PosePairSelection selection = SelectPosePairs(gt, options);
+  ASSERT_GT(selection.num_skipped, 0u);
+  ASSERT_GT(selection.kept.size(), 0u);
+  const std::string work_dir = JoinPaths(dir_->Path(), "label_matching");
+  const std::vector<std::string> args = {"--SiftMatching.num_threads", "2"};
+  const LabelMatchingSummary first = MatchPosePairsForLabels(
+      colmap, JoinPaths(SceneDir(), "base.db"), gt, options, args, work_dir);
+  EXPECT_EQ(first.num_images, 10u);
+  EXPECT_EQ(first.num_gt_images, 10u);
+  EXPECT_EQ(first.num_pairs_total, 45u);
+  EXPECT_EQ(first.num_pairs_matched, selection.kept.size());
+  EXPECT_GT(first.matching_seconds, 0.0);
+  // COLMAP saw exactly the kept pairs.
+  EXPECT_EQ(QuerySqlInt(first.database_path,
+                        "SELECT COUNT(*) FROM two_view_geometries"),
+            static_cast<int64_t>(selection.kept.size()));
+  const JsonValue record =
+      ReadJsonFile(JoinPaths(work_dir, "label_matching.json"));
+  EXPECT_EQ(record.GetIntOr("pairs_skipped", -1),
+            static_cast<int64_t>(selection.num_skipped));
+  // A second run finds every pair matched in the same database.
+  const LabelMatchingSummary again = MatchPosePairsForLabels(
+      colmap, JoinPaths(SceneDir(), "base.db"), gt, options, args, work_dir);
+  EXPECT_EQ(again.num_pairs_matched, first.num_pairs_matched);
+  EXPECT_EQ(again.matching_seconds, 0.0);
 }
 
 }  // namespace
