@@ -9,6 +9,7 @@
 #include "evaluation/json.h"
 #include "scene/camera_models.h"
 #include "scene/database.h"
+#include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
 
@@ -121,12 +122,11 @@ LabelMatchingSummary MatchPosePairsForLabels(
   // Copied once: later runs resume matching in the same database.
   if (!ExistsFile(summary.database_path)) {
     const std::string partial = summary.database_path + ".copy";
+    CopyDatabase(base_db, partial);
     std::error_code ec;
-    fs::remove(partial, ec);
-    fs::copy_file(base_db, partial, ec);
-    if (!ec) fs::rename(partial, summary.database_path, ec);
+    fs::rename(partial, summary.database_path, ec);
     if (ec) {
-      ThrowError("cannot copy ", base_db, " to ", partial, ": ", ec.message());
+      ThrowError("cannot rename ", partial, ": ", ec.message());
     }
   }
 
