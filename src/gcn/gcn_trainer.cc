@@ -13,6 +13,7 @@
 #include "gcn/gcn_inference.h"
 #include "gcn/gcn_network.h"
 #include "util/error.h"
+#include "util/threading.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
@@ -147,7 +148,7 @@ GcnClassificationStats EvaluateSamples(const GcnModel& model,
                                        BuilderPool* pool) {
   std::vector<GcnClassificationStats> per_sample(samples.size());
   ParallelFor(
-      static_cast<int>(samples.size()), num_threads, [&](int s, int thread) {
+      0, static_cast<int>(samples.size()), num_threads, [&](int s, int thread) {
         const Sample& sample = samples[s];
         const GcnGraph<float> graph =
             MakeSampleGraph(model,
@@ -265,7 +266,7 @@ GcnModel GcnTrainer::Train(
   auto log = [&](const std::string& line) {
     if (o.log) o.log(line);
   };
-  const int threads = ResolveNumThreads(o.num_threads);
+  const int threads = EffectiveNumThreads(o.num_threads);
   const int dim = static_cast<int>(scenes[0].embeddings.cols());
   for (const auto* list : {&scenes, &validation_scenes}) {
     for (const auto& scene : *list) {
@@ -329,16 +330,17 @@ GcnModel GcnTrainer::Train(
     sampled.resize(std::min<size_t>(sampled.size(), o.standardization_samples));
     std::vector<Eigen::VectorXd> sums(sampled.size()), squares(sampled.size());
     std::vector<int64_t> counts(sampled.size(), 0);
-    ParallelFor(static_cast<int>(sampled.size()), threads, [&](int s, int t) {
-      QuerySubgraph subgraph;
-      pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
-      const auto x =
-          QesFeatures(subgraph, prepared[sampled[s].scene].scene->embeddings);
-      const Eigen::MatrixXd xd = x.cast<double>();
-      sums[s] = xd.colwise().sum().transpose();
-      squares[s] = xd.array().square().colwise().sum().transpose();
-      counts[s] = x.rows();
-    });
+    ParallelFor(
+        0, static_cast<int>(sampled.size()), threads, [&](int s, int t) {
+          QuerySubgraph subgraph;
+          pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
+          const auto x = QesFeatures(
+              subgraph, prepared[sampled[s].scene].scene->embeddings);
+          const Eigen::MatrixXd xd = x.cast<double>();
+          sums[s] = xd.colwise().sum().transpose();
+          squares[s] = xd.array().square().colwise().sum().transpose();
+          counts[s] = x.rows();
+        });
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim);
     Eigen::VectorXd square = Eigen::VectorXd::Zero(dim);
     int64_t count = 0;
@@ -369,15 +371,16 @@ GcnModel GcnTrainer::Train(
       // Calibrate: logits of the sampled subgraphs' 1-hop nodes to median 0
       // and unit standard deviation.
       std::vector<std::vector<float>> per_sample(sampled.size());
-      ParallelFor(static_cast<int>(sampled.size()), threads, [&](int s, int t) {
-        const GcnGraph<float> graph =
-            MakeSampleGraph(model,
-                            prepared[sampled[s].scene],
-                            sampled[s].query,
-                            &pool.Get(t, sampled[s].scene));
-        const ColVector<float> z = GcnForwardReference(model.params, graph);
-        per_sample[s].assign(z.data(), z.data() + z.size());
-      });
+      ParallelFor(
+          0, static_cast<int>(sampled.size()), threads, [&](int s, int t) {
+            const GcnGraph<float> graph =
+                MakeSampleGraph(model,
+                                prepared[sampled[s].scene],
+                                sampled[s].query,
+                                &pool.Get(t, sampled[s].scene));
+            const ColVector<float> z = GcnForwardReference(model.params, graph);
+            per_sample[s].assign(z.data(), z.data() + z.size());
+          });
       std::vector<float> logits;
       for (const auto& z : per_sample) {
         logits.insert(logits.end(), z.begin(), z.end());
@@ -479,7 +482,7 @@ GcnModel GcnTrainer::Train(
     for (size_t begin = 0; begin < order.size(); begin += o.batch_size) {
       const int count = static_cast<int>(
           std::min<size_t>(o.batch_size, order.size() - begin));
-      ParallelFor(count, threads, [&](int i, int t) {
+      ParallelFor(0, count, threads, [&](int i, int t) {
         const Sample& sample = order[begin + i];
         const GcnGraph<float> graph =
             MakeSampleGraph(model,
@@ -611,7 +614,7 @@ GcnClassificationStats EvaluateGcn(const GcnModel& model,
                                    const QesOptions& qes,
                                    float threshold,
                                    int num_threads) {
-  const int threads = ResolveNumThreads(num_threads);
+  const int threads = EffectiveNumThreads(num_threads);
   std::vector<PreparedScene> prepared;
   std::vector<Sample> samples;
   for (size_t s = 0; s < scenes.size(); ++s) {

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <limits>
 #include <random>
-#include <thread>
 
 #include "math/dense_product.h"
 #include "retrieval/knn.h"
 #include "util/error.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 
@@ -24,17 +24,10 @@ const int kChunkSize = 4096;
 template <typename Fn>
 void ForEachChunk(int num_points, int num_threads, const Fn& fn) {
   const int num_chunks = (num_points + kChunkSize - 1) / kChunkSize;
-  num_threads = std::max(1, std::min(num_threads, num_chunks));
-  std::vector<std::thread> threads;
-  for (int t = 0; t < num_threads; ++t) {
-    threads.emplace_back([&, t]() {
-      for (int chunk = t; chunk < num_chunks; chunk += num_threads) {
-        const int begin = chunk * kChunkSize;
-        fn(begin, std::min(num_points, begin + kChunkSize));
-      }
-    });
-  }
-  for (auto& thread : threads) thread.join();
+  ParallelFor(0, num_chunks, num_threads, [&](int chunk) {
+    const int begin = chunk * kChunkSize;
+    fn(begin, std::min(num_points, begin + kChunkSize));
+  });
 }
 
 // Assigns points to centres and returns each point's squared distance.
@@ -122,7 +115,7 @@ std::vector<int> AssignToNearestCenter(const FloatMatrix& points,
                                        const FloatMatrix& centers,
                                        int num_threads) {
   THROW_CHECK(points.cols() == centers.cols() && centers.rows() > 0);
-  return Assign(points, centers, RetrievalNumThreads(num_threads), nullptr);
+  return Assign(points, centers, EffectiveNumThreads(num_threads), nullptr);
 }
 
 FloatMatrix KMeans(const FloatMatrix& points, const KMeansOptions& options) {
@@ -136,7 +129,7 @@ FloatMatrix KMeans(const FloatMatrix& points, const KMeansOptions& options) {
     ThrowError(
         "k-means needs at least ", num_clusters, " points, got ", num_points);
   }
-  const int num_threads = RetrievalNumThreads(options.num_threads);
+  const int num_threads = EffectiveNumThreads(options.num_threads);
   std::mt19937 rng(options.seed);
   FloatMatrix centers = KMeansPlusPlus(points, num_clusters, &rng);
   std::vector<int> assignment;

@@ -69,7 +69,4 @@ KnnGraph ComputeApproximateKnn(const EmbeddingMatrix& embeddings,
 KnnGraph ComputeKnn(const EmbeddingMatrix& embeddings,
                     const KnnOptions& options);
 
-// Resolves num_threads = -1 (all cores) to a positive count.
-int RetrievalNumThreads(int num_threads);
-
 }  // namespace colmap_gcn

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <thread>
 
 #include "math/dense_product.h"
 #include "retrieval/hash.h"
 #include "retrieval/knn.h"
 #include "util/error.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 
@@ -129,15 +129,10 @@ void ForEachImageParallel(const std::vector<TrainingImage>& images,
       const TrainingImage& image = images[indices[b]];
       batch.push_back(image.database->ReadDescriptors(image.image_id));
     }
-    std::vector<std::thread> threads;
-    for (int t = 0; t < num_threads; ++t) {
-      threads.emplace_back([&, t]() {
-        for (size_t b = begin + t; b < end; b += num_threads) {
-          fn(b, batch[b - begin]);
-        }
-      });
-    }
-    for (auto& thread : threads) thread.join();
+    ParallelFor(static_cast<int>(begin),
+                static_cast<int>(end),
+                num_threads,
+                [&](int b) { fn(b, batch[b - begin]); });
   }
 }
 
@@ -149,7 +144,7 @@ VladEmbedding TrainVladEmbedding(const std::vector<const Database*>& databases,
   if (!options.Check()) {
     ThrowError("invalid VLAD options");
   }
-  const int num_threads = RetrievalNumThreads(options.num_threads);
+  const int num_threads = EffectiveNumThreads(options.num_threads);
   std::vector<TrainingImage> images;
   size_t total_descriptors = 0;
   for (const Database* database : databases) {

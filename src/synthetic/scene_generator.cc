@@ -16,6 +16,7 @@
 #include "synthetic/texture.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/threading.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
@@ -146,7 +147,7 @@ SyntheticSceneSummary GenerateSyntheticScene(
   // Scene images: render and compute the visible samples, in parallel.
   const int num_images = options.num_images;
   std::vector<std::vector<SampleObservation>> visible(num_images);
-  ParallelFor(num_images, num_threads, [&](int i) {
+  ParallelFor(0, num_images, num_threads, [&](int i) {
     const PinholeCamera& camera = world.cameras[i];
     SyntheticRandom rng(SyntheticRandom::Mix(seed, 1000003ULL + i));
     const PhotometricParams photometric = options.photometric_variation
@@ -161,7 +162,7 @@ SyntheticSceneSummary GenerateSyntheticScene(
   });
 
   // Distractors: each from its own unrelated little world.
-  ParallelFor(options.num_distractors, num_threads, [&](int d) {
+  ParallelFor(0, options.num_distractors, num_threads, [&](int d) {
     WorldParams distractor_params = params;
     distractor_params.num_images = 1;
     distractor_params.seed = SyntheticRandom::Mix(seed, 2000003ULL + d);
