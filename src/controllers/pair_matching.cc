@@ -13,6 +13,7 @@
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 #include "util/timer.h"
 
@@ -31,20 +32,6 @@ std::string FileFingerprint(const std::string& path) {
   return std::to_string(info.st_size) + " " +
          std::to_string(info.st_mtim.tv_sec) + "." +
          std::to_string(info.st_mtim.tv_nsec);
-}
-
-int MinNumInliersFromArgs(const std::vector<std::string>& args,
-                          int default_value) {
-  const std::string kOption = "--SiftMatching.min_num_inliers";
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == kOption && i + 1 < args.size()) {
-      return std::stoi(args[i + 1]);
-    }
-    if (StringStartsWith(args[i], kOption + "=")) {
-      return std::stoi(args[i].substr(kOption.size() + 1));
-    }
-  }
-  return default_value;
 }
 
 std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometriesById(
@@ -99,8 +86,9 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
-  const int min_num_inliers =
-      MinNumInliersFromArgs(options.colmap_args, options.min_num_inliers);
+  const int min_num_inliers = IntArgument(options.colmap_args,
+                                          "SiftMatching.min_num_inliers",
+                                          options.min_num_inliers);
 
   std::vector<DatabaseImage> images;
   std::unordered_set<image_pair_t> pair_ids;

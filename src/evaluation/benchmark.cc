@@ -24,6 +24,8 @@
 #include "synthetic/pair_overlap.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 #include "util/timer.h"
 
@@ -69,18 +71,6 @@ void CopyDatabase(const std::string& from, const std::string& to) {
   std::error_code ec;
   fs::copy_file(from, to, ec);
   if (ec) ThrowError("cannot copy ", from, " to ", to, ": ", ec.message());
-}
-
-int MinNumInliers(const std::vector<std::string>& args) {
-  const std::string kOption = "--SiftMatching.min_num_inliers";
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == kOption && i + 1 < args.size())
-      return std::stoi(args[i + 1]);
-    if (StringStartsWith(args[i], kOption + "=")) {
-      return std::stoi(args[i].substr(kOption.size() + 1));
-    }
-  }
-  return PairMatchingOptions().min_num_inliers;
 }
 
 // Identifies a pair set regardless of order and orientation.
@@ -525,7 +515,10 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
   std::vector<ImageNamePair> verified;
   {
     const Database database(JoinPaths(dir, "database.db"));
-    const int min_num_inliers = MinNumInliers(options_.matching_args);
+    const int min_num_inliers =
+        IntArgument(options_.matching_args,
+                    "SiftMatching.min_num_inliers",
+                    PairMatchingOptions().min_num_inliers);
     for (const TwoViewGeometryInfo& info :
          database.ReadTwoViewGeometryInfos()) {
       if (!IsVerifiedTwoViewGeometry(
@@ -738,24 +731,67 @@ std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
   return CreatePairGenerator(options, database);
 }
 
-bool BenchmarkOptions::Check() const {
+void BenchmarkOptions::Check() const {
+  CHECK_OPTION(datasets, !datasets.empty(), "name at least one dataset");
+  CHECK_OPTION(methods, !methods.empty(), "name methods (or none)");
+  CHECK_OPTION(output_path, !output_path.empty(), "name a folder");
+  labels.Check();
+  pose.Check();
+  CHECK_OPTION_NUM_THREADS(mapper_num_threads);
+  CHECK_OPTION_GE(mapper_min_model_size, 0);
   for (const std::string& arg : gcn_matching_args) {
-    if (StringStartsWith(arg, "--GcnMatching.pairing") ||
-        arg == "--GcnMatching.k" || StringStartsWith(arg, "--GcnMatching.k=")) {
-      return false;  // set by each method
-    }
+    // Each method sets its own pairing and k.
+    CHECK_OPTION(gcn_matching_args,
+                 !StringStartsWith(arg, "--GcnMatching.pairing") &&
+                     arg != "--GcnMatching.k" &&
+                     !StringStartsWith(arg, "--GcnMatching.k="),
+                 "not set --GcnMatching.pairing or --GcnMatching.k (each "
+                 "method sets them)");
   }
-  return !datasets.empty() && !methods.empty() && !output_path.empty() &&
-         labels.Check() && pose.Check() && mapper_num_threads != 0;
 }
 
+namespace {
+
+std::vector<std::string> BenchmarkDatasetProblems(
+    const BenchmarkOptions& options) {
+  std::vector<std::string> problems;
+  for (const DatasetSpec& spec : ParseDatasetSpecs(options.datasets)) {
+    try {
+      CheckDataset(spec);
+    } catch (const Error& error) {
+      problems.push_back(error.what());
+    }
+  }
+  return problems;
+}
+
+}  // namespace
+
 BenchmarkResults RunBenchmark(const BenchmarkOptions& options) {
-  if (!options.Check()) {
-    ThrowError(
-        "invalid benchmark options: --datasets, --methods and "
-        "--output_path are required; thresholds must be in (0, 1]");
+  options.Check();
+  ParseBenchmarkMethods(options.methods);
+  const std::vector<std::string> problems = BenchmarkDatasetProblems(options);
+  if (!problems.empty()) {
+    ThrowError(StringJoin(problems, "; "));
   }
   return BenchmarkRunner(options).Run();
+}
+
+std::vector<std::string> BenchmarkFailures(const BenchmarkResults& results) {
+  std::vector<std::string> failures;
+  for (const SceneResult& scene : results.scenes) {
+    if (scene.status != "ok") {
+      failures.push_back(scene.name + ": " + scene.message);
+      continue;
+    }
+    for (const MethodResult& method : scene.methods) {
+      if (!method.Ok()) {
+        failures.push_back(scene.name + "/" + method.method + " " +
+                           method.status + ": " + method.message);
+      }
+    }
+  }
+  return failures;
 }
 
 }  // namespace colmap_gcn

@@ -13,6 +13,7 @@
 #include "gcn/gcn_inference.h"
 #include "gcn/gcn_network.h"
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/threading.h"
 #include "util/timer.h"
 
@@ -181,15 +182,24 @@ std::string FormatStats(const GcnClassificationStats& s) {
 
 }  // namespace
 
-bool GcnTrainingOptions::Check() const {
-  return shape.Check() && qes.Check() && test_qes.Check() &&
-         (initialization == "xavier" || initialization == "distance_prior") &&
-         prior_other_scale >= 0 &&
-         (optimizer == "sgd" || optimizer == "adam") && learning_rate > 0 &&
-         momentum >= 0 && weight_decay >= 0 && batch_size >= 1 &&
-         num_epochs >= 1 && lr_decay_factor > 0 && validation_fraction >= 0 &&
-         validation_fraction < 1 && early_stopping_patience >= 0 &&
-         standardization_samples >= 1 && threshold > 0 && threshold < 1;
+void GcnTrainingOptions::Check() const {
+  shape.Check();
+  qes.Check();
+  test_qes.Check();
+  CHECK_OPTION_ONE_OF(initialization, "xavier", "distance_prior");
+  CHECK_OPTION_GE(prior_other_scale, 0.f);
+  CHECK_OPTION_ONE_OF(optimizer, "sgd", "adam");
+  CHECK_OPTION_GT(learning_rate, 0.0);
+  CHECK_OPTION_GE(momentum, 0.0);
+  CHECK_OPTION_GE(weight_decay, 0.0);
+  CHECK_OPTION_GE(batch_size, 1);
+  CHECK_OPTION_GE(num_epochs, 1);
+  CHECK_OPTION_GT(lr_decay_factor, 0.0);
+  CHECK_OPTION_INTERVAL(validation_fraction, 0.0, true, 1.0, false);
+  CHECK_OPTION_GE(early_stopping_patience, 0);
+  CHECK_OPTION_GE(standardization_samples, 1);
+  CHECK_OPTION_INTERVAL(threshold, 0.f, false, 1.f, false);
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 double GcnClassificationStats::Precision() const {
@@ -261,7 +271,7 @@ GcnModel GcnTrainer::Train(
     const std::vector<GcnTrainingScene>& scenes,
     const std::vector<GcnTrainingScene>& validation_scenes) {
   const GcnTrainingOptions& o = options_;
-  if (!o.Check()) ThrowError("invalid GCN training options");
+  o.Check();
   if (scenes.empty()) ThrowError("no training scenes");
   auto log = [&](const std::string& line) {
     if (o.log) o.log(line);

@@ -7,13 +7,15 @@
 #include "math/dense_product.h"
 #include "retrieval/knn.h"
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/threading.h"
 
 namespace colmap_gcn {
 
-bool KMeansOptions::Check() const {
-  return num_clusters > 0 && max_iterations >= 0 &&
-         (num_threads == -1 || num_threads > 0);
+void KMeansOptions::Check() const {
+  CHECK_OPTION_GE(num_clusters, 1);
+  CHECK_OPTION_GE(max_iterations, 0);
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 namespace {
@@ -119,9 +121,7 @@ std::vector<int> AssignToNearestCenter(const FloatMatrix& points,
 }
 
 FloatMatrix KMeans(const FloatMatrix& points, const KMeansOptions& options) {
-  if (!options.Check()) {
-    ThrowError("invalid k-means options");
-  }
+  options.Check();
   const int num_points = static_cast<int>(points.rows());
   const int dim = static_cast<int>(points.cols());
   const int num_clusters = options.num_clusters;

@@ -7,14 +7,18 @@
 
 #include "math/dense_product.h"
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/threading.h"
 
 namespace colmap_gcn {
 
-bool KnnOptions::Check() const {
-  return k >= 0 && (num_threads == -1 || num_threads > 0) && block_size > 0 &&
-         (method == "exact" || method == "faiss_hnsw") && hnsw_m > 1 &&
-         hnsw_ef_search > 0;
+void KnnOptions::Check() const {
+  CHECK_OPTION_GE(k, 0);
+  CHECK_OPTION_NUM_THREADS(num_threads);
+  CHECK_OPTION_GE(block_size, 1);
+  CHECK_OPTION_ONE_OF(method, "exact", "faiss_hnsw");
+  CHECK_OPTION_GE(hnsw_m, 2);
+  CHECK_OPTION_GE(hnsw_ef_search, 1);
 }
 
 namespace {
@@ -93,11 +97,7 @@ class TopKHeaps {
 
 KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
                          const KnnOptions& options) {
-  if (!options.Check()) {
-    ThrowError(
-        "invalid kNN options (k >= 0, num_threads -1 or > 0, "
-        "block_size > 0)");
-  }
+  options.Check();
   if (!embeddings.allFinite()) {
     ThrowError("kNN input has non-finite (NaN or infinite) values");
   }

@@ -33,7 +33,8 @@ struct KnnOptions {
   int hnsw_m = 32;
   int hnsw_ef_search = 256;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // The k nearest neighbours of every image, the image itself excluded (by

@@ -8,15 +8,20 @@
 #include "retrieval/hash.h"
 #include "retrieval/knn.h"
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/threading.h"
 
 namespace colmap_gcn {
 
-bool VladOptions::Check() const {
-  return num_words > 0 && dim > 0 && shrinkage >= 0 &&
-         self_training_shrinkage >= 0 && max_training_descriptors > 0 &&
-         kmeans_iterations >= 0 && max_pca_images >= 2 &&
-         (num_threads == -1 || num_threads > 0);
+void VladOptions::Check() const {
+  CHECK_OPTION_GE(num_words, 1);
+  CHECK_OPTION_GE(dim, 1);
+  CHECK_OPTION_GE(shrinkage, 0.0);
+  CHECK_OPTION_GE(self_training_shrinkage, 0.0);
+  CHECK_OPTION_GE(max_training_descriptors, 1);
+  CHECK_OPTION_GE(kmeans_iterations, 0);
+  CHECK_OPTION_GE(max_pca_images, 2);
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 FloatMatrix RootSift(const FeatureDescriptors& descriptors) {
@@ -141,9 +146,7 @@ void ForEachImageParallel(const std::vector<TrainingImage>& images,
 VladEmbedding TrainVladEmbedding(const std::vector<const Database*>& databases,
                                  const VladOptions& options,
                                  double shrinkage) {
-  if (!options.Check()) {
-    ThrowError("invalid VLAD options");
-  }
+  options.Check();
   const int num_threads = EffectiveNumThreads(options.num_threads);
   std::vector<TrainingImage> images;
   size_t total_descriptors = 0;

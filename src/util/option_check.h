@@ -46,6 +46,14 @@ std::string FormatOptionValue(const T& value) {
 std::string FormatOptionValue(const std::string& value);
 std::string FormatOptionValue(const char* value);
 std::string FormatOptionValue(bool value);
+template <typename T>
+std::string FormatOptionValue(const std::vector<T>& values) {
+  std::string text;
+  for (size_t i = 0; i < values.size(); ++i) {
+    text += (i > 0 ? "," : "") + FormatOptionValue(values[i]);
+  }
+  return text;
+}
 
 [[noreturn]] void ThrowOptionError(const void* field,
                                    const char* name,
