@@ -739,14 +739,21 @@ void BenchmarkOptions::Check() const {
   pose.Check();
   CHECK_OPTION_NUM_THREADS(mapper_num_threads);
   CHECK_OPTION_GE(mapper_min_model_size, 0);
-  for (const std::string& arg : gcn_matching_args) {
-    // Each method sets its own pairing and k.
-    CHECK_OPTION(gcn_matching_args,
-                 !StringStartsWith(arg, "--GcnMatching.pairing") &&
-                     arg != "--GcnMatching.k" &&
-                     !StringStartsWith(arg, "--GcnMatching.k="),
-                 "not set --GcnMatching.pairing or --GcnMatching.k (each "
-                 "method sets them)");
+  // Each method sets its own pairing and k.
+  for (size_t i = 0; i < gcn_matching_args.size(); ++i) {
+    const std::string& arg = gcn_matching_args[i];
+    const size_t equals = arg.find('=');
+    const std::string name = arg.substr(0, equals);
+    if (name != "--GcnMatching.pairing" && name != "--GcnMatching.k") continue;
+    const std::string value =
+        equals != std::string::npos        ? arg.substr(equals + 1)
+        : i + 1 < gcn_matching_args.size() ? gcn_matching_args[i + 1]
+                                           : "";
+    throw OptionError(&gcn_matching_args,
+                      name,
+                      "not be given to gcn_benchmark (each --methods entry "
+                      "sets it)",
+                      internal::FormatOptionValue(value));
   }
 }
 

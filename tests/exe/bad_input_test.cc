@@ -446,8 +446,14 @@ TEST_F(BadInput, BenchmarkGcnMatchingOptionChecked) {
 
 TEST_F(BadInput, BenchmarkPairingSetByMethods) {
   ExpectBenchmarkError("--datasets synth:ordinary:10 --GcnMatching.pairing knn",
-                       {"gcn_matching_args must not set --GcnMatching.pairing",
-                        "\"--GcnMatching.pairing\""});
+                       {"--GcnMatching.pairing must not be given to "
+                        "gcn_benchmark (each --methods entry sets it) (got "
+                        "\"knn\")"});
+}
+
+TEST_F(BadInput, BenchmarkKSetByMethods) {
+  ExpectBenchmarkError("--datasets synth:ordinary:10 --GcnMatching.k=5",
+                       {"--GcnMatching.k must not be given", "(got \"5\")"});
 }
 
 TEST_F(BadInput, BenchmarkMinNumInliersText) {
