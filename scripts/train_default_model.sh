@@ -66,11 +66,13 @@ for scene in ${GT_TEST//,/ }; do
 done
 
 # 1. Features and labels (no matching methods): <WORK>/<scene>/base.db and
-#    labels/labels.csv.
+#    labels/labels.csv. A scene whose labels fail is left out below, so the
+#    run goes on (keep_going) instead of stopping the script.
 "$COLMAP" gcn_benchmark \
   --datasets "$TRAIN_SPECS,$VAL_SPECS,$TEST_SPECS" \
   --methods none \
   --output_path "$WORK" \
+  --Benchmark.keep_going 1 \
   --SiftExtraction.num_threads 2 \
   --SiftMatching.num_threads 2
 

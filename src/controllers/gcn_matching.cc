@@ -1,6 +1,7 @@
 #include "controllers/gcn_matching.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "controllers/colmap_runner.h"
@@ -12,24 +13,37 @@
 #include "util/error.h"
 #include "util/file_lock.h"
 #include "util/interrupt.h"
+#include "util/option_check.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
 
-bool GcnMatchingOptions::Check() const {
-  if ((pairing == "knn" || pairing == "vocab_tree") &&
-      (k <= 0 || (num_threads != -1 && num_threads <= 0))) {
-    return false;
+void GcnMatchingOptions::Check() const {
+  CHECK_OPTION_ONE_OF(
+      pairing, "gcn", "exhaustive", "imported", "knn", "vocab_tree");
+  CHECK_OPTION_UNSET_OR_GE(k1, -1, "the model's value", 1);
+  CHECK_OPTION_UNSET_OR_GE(k2, -1, "the model's value", 1);
+  CHECK_OPTION_UNSET_OR_GE(u, -1, "the model's value", 1);
+  CHECK_OPTION_UNSET_OR_RANGE(threshold, -1, "the model's value", 0.0, 1.0);
+  CHECK_OPTION_GE(min_pairs_per_image, 0);
+  CHECK_OPTION_GE(k, 1);
+  CHECK_OPTION_NUM_THREADS(num_threads);
+  if (pairing == "imported") {
+    CHECK_OPTION(match_list_path,
+                 !match_list_path.empty(),
+                 "name a pairs file when --GcnMatching.pairing is imported");
   }
-  if (pairing == "gcn" &&
-      (min_pairs_per_image < 0 ||
-       (threshold != -1 && (threshold < 0 || threshold > 1)) ||
-       (num_threads != -1 && num_threads <= 0))) {
-    return false;
+}
+
+void CheckOutputFolder(const std::string& path) {
+  if (path.empty()) return;
+  const std::filesystem::path parent =
+      std::filesystem::absolute(std::filesystem::path(path)).parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(parent, ec)) {
+    ThrowError(
+        "cannot write ", path, ": folder ", parent.string(), " does not exist");
   }
-  return pairing == "gcn" || pairing == "exhaustive" || pairing == "knn" ||
-         pairing == "vocab_tree" ||
-         (pairing == "imported" && !match_list_path.empty());
 }
 
 std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
@@ -62,12 +76,7 @@ std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
 
 std::unique_ptr<PairGenerator> CreatePairGenerator(
     const GcnMatchingOptions& options, const Database& database) {
-  if (!options.Check()) {
-    ThrowError("invalid --GcnMatching.pairing \"",
-               options.pairing,
-               "\" (gcn, exhaustive, knn or vocab_tree with k > 0, or "
-               "imported with --GcnMatching.match_list_path)");
-  }
+  options.Check();
   if (options.pairing == "gcn") {
     return CreateGcnPairGenerator(options, database);
   }
@@ -103,6 +112,12 @@ std::unique_ptr<PairGenerator> CreatePairGenerator(
 GcnMatchingReport RunGcnMatching(const std::string& database_path,
                                  const GcnMatchingOptions& options,
                                  const std::vector<std::string>& colmap_args) {
+  options.Check();
+  const std::string log_path = options.colmap_log_path.empty()
+                                   ? database_path + ".colmap.log"
+                                   : options.colmap_log_path;
+  CheckOutputFolder(log_path);
+  CheckOutputFolder(options.pairs_path);
   // Refused before minutes of pairing: a database we cannot replace, or one
   // that another gcn_matcher is working on (the lock spans the whole run).
   const std::string real_path = ResolveDatabasePath(database_path);
@@ -122,6 +137,13 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
                  report.num_images,
                  " image(s); run colmap feature_extractor first");
     }
+    if (database.NumDescriptors() == 0) {
+      ThrowError(database_path,
+                 " has ",
+                 report.num_images,
+                 " images but no descriptors; run colmap feature_extractor "
+                 "first");
+    }
     const std::unique_ptr<PairGenerator> generator =
         CreatePairGenerator(options, database);
     StopPointForTests("pairing");
@@ -140,9 +162,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
 
   ColmapRunnerOptions runner_options;
-  runner_options.log_path = options.colmap_log_path.empty()
-                                ? database_path + ".colmap.log"
-                                : options.colmap_log_path;
+  runner_options.log_path = log_path;
   runner_options.verbose = options.verbose;
   const ColmapRunner colmap(runner_options);
 

@@ -20,8 +20,8 @@ struct GcnMatchingOptions {
   // (pairing = gcn).
   std::string model_path = "";
 
-  // Query Enclosing Subgraph sizes and decision threshold (pairing = gcn);
-  // -1 uses the model's recommendation.
+  // Query Enclosing Subgraph sizes (>= 1) and decision threshold (in
+  // [0, 1]) (pairing = gcn); -1 uses the model's recommendation.
   int k1 = -1;
   int k2 = -1;
   int u = -1;
@@ -66,8 +66,13 @@ struct GcnMatchingOptions {
   // Show all of COLMAP's output, not only progress.
   bool verbose = false;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
+
+// Throws Error when the folder that is to hold `path` (a log or pairs
+// file) does not exist; "" passes.
+void CheckOutputFolder(const std::string& path);
 
 // The GCN generator: the model (or the default one), its embedding of the
 // database, and the QES settings (model's recommendation unless set).

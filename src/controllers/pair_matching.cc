@@ -14,6 +14,8 @@
 #include "util/file.h"
 #include "util/file_lock.h"
 #include "util/interrupt.h"
+#include "util/option_check.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 #include "util/timer.h"
 
@@ -21,20 +23,6 @@ namespace colmap_gcn {
 namespace {
 
 namespace fs = std::filesystem;
-
-int MinNumInliersFromArgs(const std::vector<std::string>& args,
-                          int default_value) {
-  const std::string kOption = "--SiftMatching.min_num_inliers";
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == kOption && i + 1 < args.size()) {
-      return std::stoi(args[i + 1]);
-    }
-    if (StringStartsWith(args[i], kOption + "=")) {
-      return std::stoi(args[i].substr(kOption.size() + 1));
-    }
-  }
-  return default_value;
-}
 
 std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometriesById(
     const Database& database) {
@@ -116,19 +104,16 @@ void MatchOnWorkingCopy(const ColmapRunner& colmap,
 
 }  // namespace
 
-bool PairMatchingOptions::Check() const {
-  return min_num_inliers >= 0 && block_size >= 1;
+void PairMatchingOptions::Check() const {
+  CHECK_OPTION_GE(min_num_inliers, 0);
+  CHECK_OPTION_GE(block_size, 1);
 }
 
 PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
                                     const std::string& database_path,
                                     const std::vector<ImagePair>& pairs,
                                     const PairMatchingOptions& options) {
-  if (!options.Check()) {
-    ThrowError(
-        "invalid matching options: min_num_inliers must be >= 0 and "
-        "block_size >= 1");
-  }
+  options.Check();
   if (!options.scores.empty() && options.scores.size() != pairs.size()) {
     ThrowError("matching options: ",
                options.scores.size(),
@@ -143,8 +128,9 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
-  const int min_num_inliers =
-      MinNumInliersFromArgs(options.colmap_args, options.min_num_inliers);
+  const int min_num_inliers = IntArgument(options.colmap_args,
+                                          "SiftMatching.min_num_inliers",
+                                          options.min_num_inliers);
 
   std::vector<DatabaseImage> images;
   std::unordered_set<image_pair_t> pair_ids;

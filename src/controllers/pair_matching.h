@@ -30,7 +30,7 @@ struct PairMatchingOptions {
   // --SiftMatching.* options).
   std::vector<std::string> colmap_args;
 
-  bool Check() const;
+  void Check() const;
 };
 
 // What matching a pair set cost and bought, in the paper's terms.

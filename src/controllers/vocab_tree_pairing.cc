@@ -14,16 +14,21 @@
 #include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
 
-bool VocabTreePairingOptions::Check() const {
-  return k > 0 && num_visual_words >= 0 && block_size > 0;
+void VocabTreePairingOptions::Check() const {
+  CHECK_OPTION_GE(k, 1);
+  CHECK_OPTION_GE(num_visual_words, 0);
+  CHECK_OPTION_GE(block_size, 1);
 }
 
-bool VocabTreeBuildOptions::Check() const {
-  return num_visual_words >= 0 && branching > 1 && num_iterations > 0;
+void VocabTreeBuildOptions::Check() const {
+  CHECK_OPTION_GE(num_visual_words, 0);
+  CHECK_OPTION_GE(branching, 2);
+  CHECK_OPTION_GE(num_iterations, 1);
 }
 
 int AutoNumVisualWords(size_t num_descriptors) {
@@ -113,10 +118,9 @@ void BuildVocabTree(const ColmapRunner& colmap,
                     const std::vector<std::string>& database_paths,
                     const std::string& output_path,
                     const VocabTreeBuildOptions& options) {
-  if (!options.Check() || database_paths.empty()) {
-    ThrowError(
-        "invalid vocabulary tree options (need databases, "
-        "branching > 1)");
+  options.Check();
+  if (database_paths.empty()) {
+    ThrowError("no database to build a vocabulary tree from");
   }
   TemporaryDirectory temp("colmap_gcn_vocab_tree");
   const std::string database_path = JoinPaths(temp.Path(), "merged.db");
@@ -227,9 +231,7 @@ VocabTreePairGenerator::VocabTreePairGenerator(
     const Database& database,
     const ColmapRunner& colmap)
     : options_(options) {
-  if (!options_.Check()) {
-    ThrowError("invalid vocabulary-tree pairing options (k > 0)");
-  }
+  options_.Check();
   std::string tree_path = options_.vocab_tree_path;
   if (tree_path.empty()) {
     tree_path = database.Path() + ".gcn-vocab-tree.bin";

@@ -26,7 +26,8 @@ struct VocabTreePairingOptions {
   // Number of image pairs in one block.
   int block_size = 1225;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // Visual words for a tree built from num_descriptors descriptors: about one
@@ -46,7 +47,8 @@ struct VocabTreeBuildOptions {
   // Lloyd iterations of COLMAP's hierarchical k-means.
   int num_iterations = 11;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // Builds a vocabulary tree with COLMAP's vocab_tree_builder from the

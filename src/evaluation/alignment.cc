@@ -1,4 +1,5 @@
 #include "evaluation/alignment.h"
+#include "util/option_check.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,8 +25,9 @@ double Median(std::vector<double> values) {
 
 }  // namespace
 
-bool PoseErrorOptions::Check() const {
-  return max_rotation_error_deg > 0 && max_position_error > 0;
+void PoseErrorOptions::Check() const {
+  CHECK_OPTION_GT(max_rotation_error_deg, 0.0);
+  CHECK_OPTION_GT(max_position_error, 0.0);
 }
 
 bool EstimateSimilarity(const std::vector<Eigen::Vector3d>& src,

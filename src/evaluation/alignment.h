@@ -33,7 +33,8 @@ struct PoseErrorOptions {
   // ... and its position error below this fraction of the scene extent.
   double max_position_error = 0.05;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // Camera errors of a model against ground truth after aligning the camera

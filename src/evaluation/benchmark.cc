@@ -26,6 +26,8 @@
 #include "synthetic/pair_overlap.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 #include "util/timer.h"
 
@@ -67,18 +69,6 @@ void CopyBaseDatabase(const std::string& from, const std::string& to) {
     RemoveDatabaseFiles(to + suffix);
   }
   CopyDatabase(from, to);
-}
-
-int MinNumInliers(const std::vector<std::string>& args) {
-  const std::string kOption = "--SiftMatching.min_num_inliers";
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == kOption && i + 1 < args.size())
-      return std::stoi(args[i + 1]);
-    if (StringStartsWith(args[i], kOption + "=")) {
-      return std::stoi(args[i].substr(kOption.size() + 1));
-    }
-  }
-  return PairMatchingOptions().min_num_inliers;
 }
 
 // Identifies a pair set regardless of order and orientation.
@@ -541,7 +531,10 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
   std::vector<ImageNamePair> verified;
   {
     const Database database(JoinPaths(dir, "database.db"));
-    const int min_num_inliers = MinNumInliers(options_.matching_args);
+    const int min_num_inliers =
+        IntArgument(options_.matching_args,
+                    "SiftMatching.min_num_inliers",
+                    PairMatchingOptions().min_num_inliers);
     for (const TwoViewGeometryInfo& info :
          database.ReadTwoViewGeometryInfos()) {
       if (!IsVerifiedTwoViewGeometry(
@@ -754,28 +747,75 @@ std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
   return CreatePairGenerator(options, database);
 }
 
-bool BenchmarkOptions::Check() const {
-  for (const std::string& arg : gcn_matching_args) {
-    if (StringStartsWith(arg, "--GcnMatching.pairing") ||
-        arg == "--GcnMatching.k" || StringStartsWith(arg, "--GcnMatching.k=")) {
-      return false;  // set by each method
-    }
+void BenchmarkOptions::Check() const {
+  CHECK_OPTION(datasets, !datasets.empty(), "name at least one dataset");
+  CHECK_OPTION(methods, !methods.empty(), "name methods (or none)");
+  CHECK_OPTION(output_path, !output_path.empty(), "name a folder");
+  labels.Check();
+  pose.Check();
+  label_pair_filter.Check();
+  CHECK_OPTION_NUM_THREADS(mapper_num_threads);
+  CHECK_OPTION_GE(mapper_min_model_size, 0);
+  // Each method sets its own pairing and k.
+  for (size_t i = 0; i < gcn_matching_args.size(); ++i) {
+    const std::string& arg = gcn_matching_args[i];
+    const size_t equals = arg.find('=');
+    const std::string name = arg.substr(0, equals);
+    if (name != "--GcnMatching.pairing" && name != "--GcnMatching.k") continue;
+    const std::string value =
+        equals != std::string::npos        ? arg.substr(equals + 1)
+        : i + 1 < gcn_matching_args.size() ? gcn_matching_args[i + 1]
+                                           : "";
+    throw OptionError(&gcn_matching_args,
+                      name,
+                      "not be given to gcn_benchmark (each --methods entry "
+                      "sets it)",
+                      internal::FormatOptionValue(value));
   }
-  return !datasets.empty() && !methods.empty() && !output_path.empty() &&
-         labels.Check() && pose.Check() && mapper_num_threads != 0;
 }
 
-BenchmarkResults RunBenchmark(const BenchmarkOptions& options) {
-  if (!options.label_pair_filter.Check()) {
-    ThrowError(
-        "--Benchmark.label_max_viewpoint_change_deg must be in [0, 180]");
+namespace {
+
+std::vector<std::string> BenchmarkDatasetProblems(
+    const BenchmarkOptions& options) {
+  std::vector<std::string> problems;
+  for (const DatasetSpec& spec : ParseDatasetSpecs(options.datasets)) {
+    try {
+      CheckDataset(spec);
+    } catch (const Error& error) {
+      problems.push_back(error.what());
+    }
   }
-  if (!options.Check()) {
-    ThrowError(
-        "invalid benchmark options: --datasets, --methods and "
-        "--output_path are required; thresholds must be in (0, 1]");
+  return problems;
+}
+
+}  // namespace
+
+BenchmarkResults RunBenchmark(const BenchmarkOptions& options) {
+  options.Check();
+  ParseBenchmarkMethods(options.methods);
+  const std::vector<std::string> problems = BenchmarkDatasetProblems(options);
+  if (!problems.empty()) {
+    ThrowError(StringJoin(problems, "; "));
   }
   return BenchmarkRunner(options).Run();
+}
+
+std::vector<std::string> BenchmarkFailures(const BenchmarkResults& results) {
+  std::vector<std::string> failures;
+  for (const SceneResult& scene : results.scenes) {
+    if (scene.status != "ok") {
+      failures.push_back(scene.name + ": " + scene.message);
+      continue;
+    }
+    for (const MethodResult& method : scene.methods) {
+      if (!method.Ok()) {
+        failures.push_back(scene.name + "/" + method.method + " " +
+                           method.status + ": " + method.message);
+      }
+    }
+  }
+  return failures;
 }
 
 }  // namespace colmap_gcn

@@ -72,6 +72,10 @@ struct BenchmarkOptions {
   // Show all of COLMAP's output.
   bool verbose = false;
 
+  // gcn_benchmark exits 0 even when scenes or methods failed (the summary
+  // is printed either way).
+  bool keep_going = false;
+
   // Real COLMAP binary ("" finds it, see ColmapRunner).
   std::string colmap_exe = "";
 
@@ -81,7 +85,8 @@ struct BenchmarkOptions {
   // Recorded in the report.
   std::string command = "";
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // Runs every method on every scene (extraction once per scene, methods
@@ -90,6 +95,12 @@ struct BenchmarkOptions {
 // and writes the report (see report.h). A method that cannot be built is
 // "unavailable", one whose COLMAP run fails is "failed"; neither stops the
 // run. Throws Error on invalid options or an unusable dataset.
+// Checks the options, the methods and every dataset (CheckDataset) before
+// any work.
 BenchmarkResults RunBenchmark(const BenchmarkOptions& options);
+
+// One line per failed scene ("<scene>: <why>") and per method that did not
+// finish in a scene that did ("<scene>/<method> failed: <why>").
+std::vector<std::string> BenchmarkFailures(const BenchmarkResults& results);
 
 }  // namespace colmap_gcn

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -30,17 +31,49 @@ std::string Basename(std::string path) {
   return fs::path(path).filename().string();
 }
 
+SyntheticSceneOptions SyntheticOptions(const DatasetSpec& spec) {
+  SyntheticSceneOptions options;
+  options.family = spec.family;
+  options.num_images = spec.num_images;
+  options.seed = spec.seed;
+  return options;
+}
+
+void CheckSyntheticSpec(const DatasetSpec& spec) {
+  try {
+    SyntheticOptions(spec).Check();
+  } catch (const Error& error) {
+    ThrowError("dataset \"", spec.spec, "\": ", error.what());
+  }
+}
+
+// The bundle file's "<num_cameras> <num_points>" header line, checked
+// without reading the (possibly large) rest.
+void CheckBundlerHeader(const std::string& spec, const std::string& path) {
+  std::ifstream file(path);
+  std::string line;
+  while (std::getline(file, line) && StringStartsWith(StringTrim(line), "#")) {
+  }
+  std::istringstream fields(line);
+  long long num_cameras = -1;
+  long long num_points = -1;
+  std::string rest;
+  if (!file || !(fields >> num_cameras >> num_points) || (fields >> rest) ||
+      num_cameras < 0 || num_points < 0) {
+    ThrowError("dataset ",
+               spec,
+               ": ",
+               path,
+               " is not a Bundler file (no \"<cameras> <points>\" header)");
+  }
+}
+
 void PrepareSynthetic(const std::string& scene_dir, Dataset* dataset) {
   const std::string gt_dir = JoinPaths(scene_dir, "gt");
   const std::string done = JoinPaths(gt_dir, "scene.txt");
   if (!ExistsFile(done)) {
-    SyntheticSceneOptions options;
-    options.family = dataset->spec.family;
-    options.num_images = dataset->spec.num_images;
-    options.seed = dataset->spec.seed;
-    const std::string problem = options.CheckMessage();
-    if (!problem.empty()) ThrowError(dataset->spec.spec, ": ", problem);
-    GenerateSyntheticScene(options, scene_dir);
+    CheckSyntheticSpec(dataset->spec);
+    GenerateSyntheticScene(SyntheticOptions(dataset->spec), scene_dir);
   }
   dataset->kind = "synthetic";
   dataset->image_path = JoinPaths(scene_dir, "images");
@@ -173,6 +206,71 @@ std::vector<std::string> ListImageFiles(const std::string& folder) {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+void CheckDataset(const DatasetSpec& spec) {
+  if (spec.synthetic) {
+    CheckSyntheticSpec(spec);
+    return;
+  }
+  if (!fs::exists(spec.path)) {
+    ThrowError("dataset ", spec.path, " does not exist");
+  }
+  if (!ExistsDir(spec.path)) {
+    ThrowError("dataset ",
+               spec.path,
+               " is not a folder (images/ + gt/, or 1DSfM list.txt + "
+               "bundle.out)");
+  }
+  const std::string image_path = JoinPaths(spec.path, "images");
+  if (!ExistsDir(image_path)) {
+    ThrowError("dataset ", spec.path, " has no images/ folder");
+  }
+  const std::string list_path = JoinPaths(spec.path, "list.txt");
+  std::string bundle_path = JoinPaths(spec.path, "gt_bundle.out");
+  if (!ExistsFile(bundle_path))
+    bundle_path = JoinPaths(spec.path, "bundle.out");
+  if (ExistsFile(list_path) && ExistsFile(bundle_path)) {
+    const std::vector<std::string> listed = ReadBundlerImageList(list_path);
+    size_t num_missing = 0;
+    std::string first_missing;
+    for (const std::string& entry : listed) {
+      if (!ExistsFile(JoinPaths(spec.path, entry)) &&
+          !ExistsFile(JoinPaths(image_path, entry))) {
+        if (num_missing++ == 0) first_missing = entry;
+      }
+    }
+    if (num_missing > 0) {
+      ThrowError("dataset ",
+                 spec.path,
+                 ": ",
+                 num_missing,
+                 " of the ",
+                 listed.size(),
+                 " images in list.txt do not exist (first: \"",
+                 first_missing,
+                 "\")");
+    }
+    if (listed.size() < 2) {
+      ThrowError("dataset ",
+                 spec.path,
+                 ": list.txt lists ",
+                 listed.size(),
+                 " image(s), need >= 2");
+    }
+    CheckBundlerHeader(spec.path, bundle_path);
+    return;
+  }
+  const size_t num_images = ListImageFiles(image_path).size();
+  if (num_images < 2) {
+    ThrowError("dataset ",
+               spec.path,
+               " has ",
+               num_images,
+               " image(s) in ",
+               image_path,
+               ", need >= 2");
+  }
 }
 
 Dataset PrepareDataset(const DatasetSpec& spec, const std::string& scene_dir) {

@@ -56,6 +56,13 @@ struct Dataset {
   bool single_camera = false;
 };
 
+// Throws Error naming the spec when the dataset cannot be prepared: a bad
+// synthetic family or size, a missing path or one that is not a folder, no
+// images/ or fewer than 2 images, a list.txt naming missing images, a
+// bundle file without a Bundler header. Cheap: nothing is rendered or
+// converted, so the benchmark checks every dataset before any work.
+void CheckDataset(const DatasetSpec& spec);
+
 // Prepares the dataset in scene_dir (OUT/<name>): renders synthetic scenes,
 // converts Bundler references to COLMAP models, lists the images. Work
 // whose outputs exist is not repeated. Throws Error on a missing or

@@ -6,13 +6,14 @@
 
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
 
-bool PairLabelOptions::Check() const {
-  return min_overlap > 0 && min_overlap <= 1 && min_common_track_ratio > 0 &&
-         min_common_track_ratio <= 1;
+void PairLabelOptions::Check() const {
+  CHECK_OPTION_INTERVAL(min_overlap, 0.0, false, 1.0, true);
+  CHECK_OPTION_INTERVAL(min_common_track_ratio, 0.0, false, 1.0, true);
 }
 
 PairLabels::PairLabels(const std::vector<std::string>& image_names,

@@ -18,7 +18,8 @@ struct PairLabelOptions {
   // tau_CT: minimum common-track ratio |P_i n P_j| / min(|P_i|, |P_j|).
   double min_common_track_ratio = 0.15;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // What is known about one unordered pair; a negative value means that kind

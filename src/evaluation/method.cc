@@ -31,6 +31,16 @@ BenchmarkMethod ParseBenchmarkMethod(const std::string& spec) {
   method.spec = spec;
   const std::vector<std::string> fields = StringSplit(spec, ":");
   method.pairing = fields[0];
+  static const std::vector<std::string> kPairings = {
+      "exhaustive", "knn", "vocab_tree", "gcn", "oracle"};
+  if (!method.pairing.empty() &&
+      std::find(kPairings.begin(), kPairings.end(), method.pairing) ==
+          kPairings.end()) {
+    ThrowError("bad method \"",
+               spec,
+               "\" in --methods: must be one of "
+               "exhaustive|knn:<k>|vocab_tree:<k>|gcn|oracle");
+  }
   const bool k_based = KOptionName(method.pairing) != nullptr;
   if (fields.size() > 2 || (fields.size() == 2 && !k_based)) {
     ThrowError(
@@ -46,7 +56,9 @@ BenchmarkMethod ParseBenchmarkMethod(const std::string& spec) {
     } catch (const std::exception&) {
       method.k = 0;
     }
-    if (method.k <= 0) ThrowError("bad k in method \"", spec, "\"");
+    if (method.k <= 0 || std::to_string(method.k) != StringTrim(fields[1])) {
+      ThrowError("bad k in method \"", spec, "\": must be an integer >= 1");
+    }
   } else if (method.pairing.empty()) {
     ThrowError("empty method in --methods");
   }

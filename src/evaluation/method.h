@@ -21,8 +21,9 @@ struct BenchmarkMethod {
   int EffectiveK(size_t num_images) const;
 };
 
-// Throws Error on a malformed spec or a bad k; a pairing this build cannot
-// create is accepted here and reported as unavailable by the benchmark.
+// Throws Error on an unknown pairing, a malformed spec or a bad k. A known
+// pairing this build cannot create (e.g. gcn without a model) is reported
+// as unavailable by the benchmark.
 BenchmarkMethod ParseBenchmarkMethod(const std::string& spec);
 // "none" gives no methods: scenes are only extracted and labelled.
 std::vector<BenchmarkMethod> ParseBenchmarkMethods(

@@ -12,6 +12,7 @@
 #include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 namespace {
@@ -29,8 +30,8 @@ Eigen::Vector3d OpticalAxis(const ModelImage& image) {
 
 }  // namespace
 
-bool PosePairFilterOptions::Check() const {
-  return max_viewpoint_change_deg >= 0 && max_viewpoint_change_deg <= 180;
+void PosePairFilterOptions::Check() const {
+  CHECK_OPTION_RANGE(max_viewpoint_change_deg, 0.0, 180.0);
 }
 
 double MaxRayAngleFromAxis(const ModelCamera& camera) {
@@ -76,11 +77,7 @@ double MinViewpointChangeDeg(const ModelImage& image1,
 
 PosePairSelection SelectPosePairs(const Reconstruction& model,
                                   const PosePairFilterOptions& options) {
-  if (!options.Check()) {
-    ThrowError(
-        "bad pose pair filter: max_viewpoint_change_deg must be in "
-        "[0, 180]");
-  }
+  options.Check();
   std::vector<const ModelImage*> images;
   for (const auto& [image_id, image] : model.images) {
     if (model.cameras.count(image.camera_id) == 0) {

@@ -34,7 +34,7 @@ struct PosePairFilterOptions {
   double max_viewpoint_change_deg = 0;
 
   bool Enabled() const { return max_viewpoint_change_deg > 0; }
-  bool Check() const;
+  void Check() const;
 };
 
 // The largest angle (radians) between the optical axis and a ray through

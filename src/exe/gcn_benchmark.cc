@@ -11,18 +11,30 @@
 #include "util/string.h"
 
 namespace colmap_gcn {
-std::unique_ptr<PairGenerator> CreatePairGeneratorFromArguments(
-    const std::vector<std::string>& gcn_matching_args,
-    const Database& database) {
+namespace {
+
+// The --GcnMatching.* arguments parsed and checked as gcn_matcher would.
+GcnMatchingOptions ParseGcnMatchingArguments(
+    const std::vector<std::string>& gcn_matching_args) {
   GcnMatchingOptions options;
-  OptionManager manager("gcn_benchmark method", "");
+  OptionManager manager("gcn_benchmark", "");
   AddGcnMatchingOptions(&manager, &options);
   std::vector<std::string> args = {"gcn_benchmark"};
   args.insert(args.end(), gcn_matching_args.begin(), gcn_matching_args.end());
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   manager.Parse(static_cast<int>(argv.size()), argv.data());
-  return CreatePairGenerator(options, database);
+  manager.Check([&] { options.Check(); });
+  return options;
+}
+
+}  // namespace
+
+std::unique_ptr<PairGenerator> CreatePairGeneratorFromArguments(
+    const std::vector<std::string>& gcn_matching_args,
+    const Database& database) {
+  return CreatePairGenerator(ParseGcnMatchingArguments(gcn_matching_args),
+                             database);
 }
 
 int RunGcnBenchmark(int argc, char** argv) {
@@ -71,6 +83,9 @@ int RunGcnBenchmark(int argc, char** argv) {
                            "smaller models are discarded by the mapper");
   manager.AddDefaultOption(
       "Benchmark.verbose", &options.verbose, "show all of COLMAP's output");
+  manager.AddDefaultOption("Benchmark.keep_going",
+                           &options.keep_going,
+                           "exit 0 even when scenes or methods failed");
   manager.AddPassThroughPrefix("ImageReader.");
   manager.AddPassThroughPrefix("SiftExtraction.");
   manager.AddPassThroughPrefix("SiftMatching.");
@@ -86,6 +101,9 @@ int RunGcnBenchmark(int argc, char** argv) {
   options.mapper_args = ArgumentsWithPrefix(args, {"Mapper."});
   options.gcn_matching_args = ArgumentsWithPrefix(args, {"GcnMatching."});
   options.pair_generator_factory = &CreatePairGeneratorFromArguments;
+  manager.Check([&] { options.Check(); });
+  CheckSiftMatchingArguments(options.matching_args);
+  ParseGcnMatchingArguments(options.gcn_matching_args);
   std::vector<std::string> command = {"colmap"};
   for (int i = 0; i < argc; ++i) command.push_back(ShellQuote(argv[i]));
   options.command = StringJoin(command, " ");
@@ -94,17 +112,20 @@ int RunGcnBenchmark(int argc, char** argv) {
   std::cout << FormatBenchmarkReport(results) << std::flush;
   std::cerr << "[gcn_benchmark] report: " << options.output_path
             << "/report.md\n";
-  // A failed scene does not cost the others (exit 0), but is not silent.
-  std::vector<std::string> failed;
-  for (const SceneResult& scene : results.scenes) {
-    if (scene.status != "ok") failed.push_back(scene.name);
+  // A failed scene or method does not cost the others' results, but the
+  // run failed: exit 1 unless --Benchmark.keep_going.
+  const std::vector<std::string> failures = BenchmarkFailures(results);
+  if (failures.empty()) return 0;
+  std::cerr << "[gcn_benchmark] " << failures.size()
+            << " failure(s) (see the report):\n";
+  for (const std::string& failure : failures) {
+    std::cerr << "[gcn_benchmark]   " << failure << "\n";
   }
-  if (!failed.empty()) {
-    std::cerr << "[gcn_benchmark] WARNING: " << failed.size() << " of "
-              << results.scenes.size() << " scene(s) failed (see the report): "
-              << StringJoin(failed, ", ") << "\n";
-  }
-  return 0;
+  if (options.keep_going) return 0;
+  std::cerr << "ERROR: gcn_benchmark: " << failures.size() << " failure(s) in "
+            << results.scenes.size()
+            << " scene(s); --Benchmark.keep_going 1 exits 0 anyway\n";
+  return 1;
 }
 
 }  // namespace colmap_gcn

@@ -46,6 +46,7 @@ int RunGcnEmbeddingTrainer(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
+  manager.Check([&] { options.Check(); });
   const std::vector<std::string> paths = SplitCommaList(database_paths);
   if (paths.empty()) {
     ThrowError("--database_paths lists no database");

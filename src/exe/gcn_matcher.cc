@@ -1,6 +1,7 @@
 #include "exe/gcn_matcher.h"
 
 #include "controllers/gcn_matching.h"
+#include "util/error.h"
 #include "util/option_manager.h"
 
 namespace colmap_gcn {
@@ -63,6 +64,16 @@ void AddGcnMatchingOptions(OptionManager* manager,
   manager->AddPassThroughPrefix("SiftMatching.");
 }
 
+void CheckSiftMatchingArguments(const std::vector<std::string>& args) {
+  const int min_num_inliers =
+      IntArgument(args, "SiftMatching.min_num_inliers", 0);
+  if (min_num_inliers < 0) {
+    ThrowError("--SiftMatching.min_num_inliers must be >= 0 (got ",
+               min_num_inliers,
+               ")");
+  }
+}
+
 int RunGcnMatcher(int argc, char** argv) {
   std::string database_path;
   GcnMatchingOptions options;
@@ -75,6 +86,8 @@ int RunGcnMatcher(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
+  manager.Check([&] { options.Check(); });
+  CheckSiftMatchingArguments(manager.PassThroughArguments());
   PrintGcnMatchingReport(
       RunGcnMatching(database_path, options, manager.PassThroughArguments()));
   return 0;

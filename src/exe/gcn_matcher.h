@@ -1,5 +1,8 @@
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "controllers/gcn_matching.h"
 #include "util/option_manager.h"
 
@@ -7,6 +10,10 @@ namespace colmap_gcn {
 
 // Registers the --GcnMatching.* options (and passes --SiftMatching.* on).
 void AddGcnMatchingOptions(OptionManager* manager, GcnMatchingOptions* options);
+
+// Throws Error naming the option when a --SiftMatching.* value we read
+// ourselves (min_num_inliers: an integer >= 0) is invalid.
+void CheckSiftMatchingArguments(const std::vector<std::string>& args);
 
 // `colmap gcn_matcher`: selects image pairs and matches them with COLMAP.
 int RunGcnMatcher(int argc, char** argv);

@@ -8,6 +8,7 @@
 #include "training/model_evaluation.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
 
@@ -52,14 +53,22 @@ int RunGcnModelEvaluator(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
+  manager.Check([&] {
+    CHECK_OPTION_GE(max_k, 1);
+    CHECK_OPTION(tau_mo,
+                 tau_mo < 0 || (tau_mo > 0 && tau_mo <= 1),
+                 "be < 0 (the model's value) or in (0, 1]");
+    CHECK_OPTION(tau_ct,
+                 tau_ct < 0 || (tau_ct > 0 && tau_ct <= 1),
+                 "be < 0 (the model's value) or in (0, 1]");
+    CHECK_OPTION_NUM_THREADS(num_threads);
+  });
   if (model_path.empty()) model_path = DefaultGcnModelPath();
   const GcnModel model = ReadGcnModel(model_path);
   PairLabelOptions labels;
   labels.min_overlap = tau_mo < 0 ? model.info.tau_mo : tau_mo;
   labels.min_common_track_ratio = tau_ct < 0 ? model.info.tau_ct : tau_ct;
-  if (max_k < 1 || !labels.Check()) {
-    ThrowError("invalid options: max_k >= 1, thresholds in (0, 1]");
-  }
+  labels.Check();
   const std::vector<GcnTrainingScene> embedded = EmbedScenesForModel(
       model,
       FindLabelledScenes(benchmark_path, SplitCommaList(scenes)),

@@ -1,6 +1,7 @@
 #include "exe/gcn_reconstructor.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "controllers/colmap_runner.h"
@@ -16,6 +17,22 @@
 #include "util/timer.h"
 
 namespace colmap_gcn {
+namespace {
+
+// COLMAP's image reader walks the folder recursively and skips what it
+// cannot decode; a folder without a single file cannot give any image.
+bool HoldsAnyFile(const std::string& folder) {
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_regular_file(ec)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 int RunGcnReconstructor(int argc, char** argv) {
   std::string image_path;
   std::string workspace_path;
@@ -33,9 +50,16 @@ int RunGcnReconstructor(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
+  manager.Check([&] { matching_options.Check(); });
+  CheckSiftMatchingArguments(manager.PassThroughArguments());
   if (!ExistsDir(image_path)) {
     ThrowError("image folder not found: ", image_path);
   }
+  if (!HoldsAnyFile(image_path)) {
+    ThrowError("image folder ", image_path, " holds no files");
+  }
+  CheckOutputFolder(matching_options.colmap_log_path);
+  CheckOutputFolder(matching_options.pairs_path);
   CreateDirIfNotExists(workspace_path);
   const std::string database_path = JoinPaths(workspace_path, "database.db");
   const std::string sparse_path = JoinPaths(workspace_path, "sparse");
@@ -60,6 +84,16 @@ int RunGcnReconstructor(int argc, char** argv) {
                          extraction_options.end());
   colmap.Run("feature_extractor", extraction_args);
   const double extraction_seconds = timer.ElapsedSeconds();
+  {
+    const Database database(database_path);
+    if (database.NumImages() < 2) {
+      ThrowError("colmap feature_extractor read ",
+                 database.NumImages(),
+                 " image(s) from ",
+                 image_path,
+                 "; at least 2 readable images are needed");
+    }
+  }
 
   std::cerr << "[2/3] gcn_matcher\n";
   const GcnMatchingReport matching =

@@ -44,10 +44,7 @@ int RunGcnSynth(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
-  const std::string problem = options.CheckMessage();
-  if (!problem.empty()) {
-    ThrowError("gcn_synth: ", problem);
-  }
+  manager.Check([&] { options.Check(); });
   const SyntheticSceneSummary summary =
       GenerateSyntheticScene(options, output_path);
   std::printf(

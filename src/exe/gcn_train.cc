@@ -1,5 +1,6 @@
 #include "exe/gcn_train.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -7,6 +8,7 @@
 #include "training/gcn_training.h"
 #include "training/model_evaluation.h"
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
 #include "util/timer.h"
@@ -98,25 +100,27 @@ int RunGcnTrain(int argc, char** argv) {
   }
   options.vlad.num_threads = training.num_threads;
   training.shape.gcn_dims = ParseIntList(gcn_dims, "--GcnTraining.gcn_dims");
-  if (training.initialization != "xavier" &&
-      training.initialization != "distance_prior") {
-    ThrowError(
-        "--GcnTraining.initialization must be xavier or distance_prior, got "
-        "'",
-        training.initialization,
-        "'");
-  }
-  if (aggregation == "symmetric") {
-    training.aggregation = GcnAggregation::kSymmetric;
-  } else if (aggregation == "row") {
-    training.aggregation = GcnAggregation::kRowNormalized;
-  } else {
-    ThrowError("--GcnTraining.aggregation must be symmetric or row, got '",
-               aggregation,
-               "'");
-  }
   training.lr_decay_epochs =
       ParseIntList(lr_decay_epochs, "--GcnTraining.lr_decay_epochs");
+  manager.Check([&] {
+    CHECK_OPTION(gcn_dims,
+                 !training.shape.gcn_dims.empty() &&
+                     std::all_of(training.shape.gcn_dims.begin(),
+                                 training.shape.gcn_dims.end(),
+                                 [](int dim) { return dim > 0; }),
+                 "be a comma list of positive sizes");
+    CHECK_OPTION(lr_decay_epochs,
+                 std::all_of(training.lr_decay_epochs.begin(),
+                             training.lr_decay_epochs.end(),
+                             [](int epoch) { return epoch >= 0; }),
+                 "be a comma list of epochs >= 0");
+    CHECK_OPTION_ONE_OF(aggregation, "symmetric", "row");
+    // The number of threads first: the VLAD's copy is not a flag.
+    CHECK_OPTION_NUM_THREADS(training.num_threads);
+    options.Check();
+  });
+  training.aggregation = aggregation == "row" ? GcnAggregation::kRowNormalized
+                                              : GcnAggregation::kSymmetric;
 
   const std::vector<std::string> validation_names =
       SplitCommaList(validation_scenes);

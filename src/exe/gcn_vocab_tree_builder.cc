@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "controllers/gcn_matching.h"
 #include "controllers/vocab_tree_pairing.h"
 #include "util/error.h"
 #include "util/option_manager.h"
@@ -37,6 +38,8 @@ int RunGcnVocabTreeBuilder(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
+  manager.Check([&] { options.Check(); });
+  CheckOutputFolder(runner_options.log_path);
   const std::vector<std::string> paths = SplitCommaList(database_paths);
   if (paths.empty()) {
     ThrowError("--database_paths lists no database");

@@ -6,14 +6,18 @@
 
 #include "feature/pairs_io.h"
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
 
-bool ExhaustiveMatchingOptions::Check() const { return block_size > 1; }
+void ExhaustiveMatchingOptions::Check() const {
+  CHECK_OPTION_GE(block_size, 2);
+}
 
-bool ImagePairsMatchingOptions::Check() const {
-  return block_size > 0 && !match_list_path.empty();
+void ImagePairsMatchingOptions::Check() const {
+  CHECK_OPTION_GE(block_size, 1);
+  CHECK_OPTION(match_list_path, !match_list_path.empty(), "name a pairs file");
 }
 
 std::vector<ImagePair> PairGenerator::AllPairs() {
@@ -44,9 +48,7 @@ ExhaustivePairGenerator::ExhaustivePairGenerator(
     const ExhaustiveMatchingOptions& options,
     const std::vector<DatabaseImage>& images)
     : options_(options), image_ids_(SortedImageIds(images)) {
-  if (!options_.Check()) {
-    ThrowError("invalid exhaustive pairing options: block_size must be > 1");
-  }
+  options_.Check();
   block_size_ = static_cast<size_t>(options_.block_size);
   num_blocks_ = (image_ids_.size() + block_size_ - 1) / block_size_;
 }
@@ -92,9 +94,7 @@ ImportedPairGenerator::ImportedPairGenerator(
     const ImagePairsMatchingOptions& options,
     const std::vector<DatabaseImage>& images)
     : options_(options) {
-  if (!options_.Check()) {
-    ThrowError("invalid imported pairing options: a pairs file is required");
-  }
+  options_.Check();
   std::unordered_map<std::string, image_t> name_to_id;
   for (const auto& image : images) {
     name_to_id.emplace(image.name, image.image_id);

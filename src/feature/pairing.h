@@ -18,7 +18,8 @@ struct ExhaustiveMatchingOptions {
   // Block size, i.e. number of images whose pairs form one block.
   int block_size = 50;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 struct ImagePairsMatchingOptions {
@@ -28,7 +29,8 @@ struct ImagePairsMatchingOptions {
   // Path to the pairs file (`name1 name2` per line, COLMAP's format).
   std::string match_list_path = "";
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 class PairGenerator {

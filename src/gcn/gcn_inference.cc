@@ -1,13 +1,11 @@
 #include "gcn/gcn_inference.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <thread>
 
 #include "math/sgemm.h"
 #include "util/error.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 namespace {
@@ -23,38 +21,6 @@ void EnsureSize(std::vector<float>* buffer, size_t size) {
 }
 
 }  // namespace
-
-int ResolveNumThreads(int num_threads) {
-  if (num_threads > 0) return num_threads;
-  return std::max(1u, std::thread::hardware_concurrency());
-}
-
-void ParallelFor(int n,
-                 int num_threads,
-                 const std::function<void(int index, int thread)>& fn) {
-  const int threads = std::min(ResolveNumThreads(num_threads), std::max(n, 1));
-  if (threads <= 1) {
-    for (int i = 0; i < n; ++i) fn(i, 0);
-    return;
-  }
-  std::atomic<int> next(0);
-  std::vector<std::exception_ptr> errors(threads);
-  std::vector<std::thread> workers;
-  for (int t = 0; t < threads; ++t) {
-    workers.emplace_back([&, t]() {
-      try {
-        for (int i = next++; i < n; i = next++) fn(i, t);
-      } catch (...) {
-        errors[t] = std::current_exception();
-        next = n;
-      }
-    });
-  }
-  for (auto& worker : workers) worker.join();
-  for (const auto& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
-}
 
 GcnScorer::GcnScorer(const GcnModel& model,
                      const EmbeddingMatrix& embeddings,
@@ -78,7 +44,7 @@ GcnScorer::GcnScorer(const GcnModel& model,
   // In row blocks so that large collections can be projected in parallel.
   constexpr int kBlock = 4096;
   const int num_blocks = static_cast<int>((n + kBlock - 1) / kBlock);
-  ParallelFor(num_blocks, num_threads, [&](int block, int) {
+  ParallelFor(0, num_blocks, num_threads, [&](int block, int) {
     const long begin = static_cast<long>(block) * kBlock;
     const int rows = static_cast<int>(std::min<long>(kBlock, n - begin));
     Sgemm(RowMajorView(embeddings.data() + begin * d, rows, d, d),
@@ -206,12 +172,12 @@ std::vector<std::vector<float>> ScoreAllQueries(
     int num_threads) {
   const GcnScorer scorer(model, embeddings, num_threads);
   const int n = knn.NumImages();
-  const int threads = ResolveNumThreads(num_threads);
+  const int threads = EffectiveNumThreads(num_threads);
   std::vector<std::unique_ptr<QesBuilder>> builders(threads);
   std::vector<GcnWorkspace> workspaces(threads);
   std::vector<QuerySubgraph> subgraphs(threads);
   std::vector<std::vector<float>> scores(n);
-  ParallelFor(n, threads, [&](int q, int t) {
+  ParallelFor(0, n, threads, [&](int q, int t) {
     if (!builders[t]) builders[t] = std::make_unique<QesBuilder>(knn, qes);
     builders[t]->Build(q, &subgraphs[t]);
     std::vector<float> logits;

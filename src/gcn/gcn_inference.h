@@ -52,15 +52,6 @@ class GcnScorer {
   PackedMatrix packed_fc1_weight_;
 };
 
-// Runs fn(index, thread) for index in [0, n) on num_threads threads
-// (-1 = hardware concurrency) with dynamic scheduling. fn must write its
-// result to a slot owned by `index` so results do not depend on the threads.
-void ParallelFor(int n,
-                 int num_threads,
-                 const std::function<void(int index, int thread)>& fn);
-
-int ResolveNumThreads(int num_threads);
-
 // Matchability probabilities sigmoid(logit) of every query's 1-hop nodes:
 // result[q][i] belongs to image knn.indices(q, i), i < min(k1, K). Builds the
 // QESs with `qes` (knn.K() >= qes.RequiredK()). Deterministic for any number

@@ -4,15 +4,19 @@
 #include <random>
 
 #include "util/error.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 
-bool GcnShape::Check() const {
-  if (input_dim <= 0 || fc_dim <= 0 || gcn_dims.empty()) return false;
-  for (int dim : gcn_dims) {
-    if (dim <= 0) return false;
-  }
-  return true;
+void GcnShape::Check() const {
+  CHECK_OPTION_GE(input_dim, 1);
+  CHECK_OPTION(
+      gcn_dims,
+      !gcn_dims.empty() && std::all_of(gcn_dims.begin(),
+                                       gcn_dims.end(),
+                                       [](int dim) { return dim > 0; }),
+      "be a non-empty list of positive sizes");
+  CHECK_OPTION_GE(fc_dim, 1);
 }
 
 GcnParameterLayout::GcnParameterLayout(const GcnShape& shape) {
@@ -40,7 +44,11 @@ GcnParameterLayout::GcnParameterLayout(const GcnShape& shape) {
 }
 
 void GcnModel::Check() const {
-  if (!shape.Check()) ThrowError("invalid GCN network shape");
+  try {
+    shape.Check();
+  } catch (const Error& error) {
+    ThrowError("invalid GCN network shape: ", error.what());
+  }
   if (input_shift.size() != shape.input_dim ||
       input_scale.size() != shape.input_dim) {
     ThrowError("GCN input standardisation has size ",
@@ -83,7 +91,7 @@ RowMatrix<float> GcnModel::NodeFeatures(
 GcnModel InitializeGcnModel(const GcnShape& shape,
                             GcnAggregation aggregation,
                             uint32_t seed) {
-  if (!shape.Check()) ThrowError("invalid GCN network shape");
+  shape.Check();
   GcnModel model;
   model.shape = shape;
   model.aggregation = aggregation;

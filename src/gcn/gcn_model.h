@@ -25,7 +25,8 @@ struct GcnShape {
   std::vector<int> gcn_dims = {512, 512, 256, 256};
   int fc_dim = 256;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
   int NumGcnLayers() const { return static_cast<int>(gcn_dims.size()); }
   int LayerInputDim(int layer) const {
     return layer == 0 ? input_dim : gcn_dims[layer - 1];

@@ -6,13 +6,19 @@
 #include "gcn/gcn_inference.h"
 #include "gcn/gcn_trainer.h"
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
 
-bool GcnPairingOptions::Check() const {
-  return k1 >= 1 && k2 >= 0 && u >= 0 && threshold >= 0 && threshold <= 1 &&
-         min_pairs_per_image >= 0 && block_size >= 1 && num_threads != 0;
+void GcnPairingOptions::Check() const {
+  CHECK_OPTION_GE(k1, 1);
+  CHECK_OPTION_GE(k2, 0);
+  CHECK_OPTION_GE(u, 0);
+  CHECK_OPTION_RANGE(threshold, 0.0, 1.0);
+  CHECK_OPTION_GE(min_pairs_per_image, 0);
+  CHECK_OPTION_GE(block_size, 1);
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 GcnPairingOptions GcnPairingOptionsFromModel(const GcnModel& model) {
@@ -29,7 +35,7 @@ GcnPairGenerator::GcnPairGenerator(const GcnPairingOptions& options,
                                    const EmbeddingMatrix& embeddings,
                                    const GcnModel& model)
     : options_(options) {
-  if (!options_.Check()) ThrowError("invalid GCN pairing options");
+  options_.Check();
   const int n = static_cast<int>(image_ids.size());
   if (embeddings.rows() != n) {
     ThrowError("GCN pairing got ",

@@ -26,7 +26,8 @@ struct GcnPairingOptions {
   // Pairs per Next() block.
   int block_size = 1225;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // k1, k2, u and threshold recommended by the model file; other fields default.

@@ -13,6 +13,8 @@
 #include "gcn/gcn_inference.h"
 #include "gcn/gcn_network.h"
 #include "util/error.h"
+#include "util/option_check.h"
+#include "util/threading.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
@@ -147,7 +149,7 @@ GcnClassificationStats EvaluateSamples(const GcnModel& model,
                                        BuilderPool* pool) {
   std::vector<GcnClassificationStats> per_sample(samples.size());
   ParallelFor(
-      static_cast<int>(samples.size()), num_threads, [&](int s, int thread) {
+      0, static_cast<int>(samples.size()), num_threads, [&](int s, int thread) {
         const Sample& sample = samples[s];
         const GcnGraph<float> graph =
             MakeSampleGraph(model,
@@ -180,15 +182,24 @@ std::string FormatStats(const GcnClassificationStats& s) {
 
 }  // namespace
 
-bool GcnTrainingOptions::Check() const {
-  return shape.Check() && qes.Check() && test_qes.Check() &&
-         (initialization == "xavier" || initialization == "distance_prior") &&
-         prior_other_scale >= 0 &&
-         (optimizer == "sgd" || optimizer == "adam") && learning_rate > 0 &&
-         momentum >= 0 && weight_decay >= 0 && batch_size >= 1 &&
-         num_epochs >= 1 && lr_decay_factor > 0 && validation_fraction >= 0 &&
-         validation_fraction < 1 && early_stopping_patience >= 0 &&
-         standardization_samples >= 1 && threshold > 0 && threshold < 1;
+void GcnTrainingOptions::Check() const {
+  shape.Check();
+  qes.Check();
+  test_qes.Check();
+  CHECK_OPTION_ONE_OF(initialization, "xavier", "distance_prior");
+  CHECK_OPTION_GE(prior_other_scale, 0.f);
+  CHECK_OPTION_ONE_OF(optimizer, "sgd", "adam");
+  CHECK_OPTION_GT(learning_rate, 0.0);
+  CHECK_OPTION_GE(momentum, 0.0);
+  CHECK_OPTION_GE(weight_decay, 0.0);
+  CHECK_OPTION_GE(batch_size, 1);
+  CHECK_OPTION_GE(num_epochs, 1);
+  CHECK_OPTION_GT(lr_decay_factor, 0.0);
+  CHECK_OPTION_INTERVAL(validation_fraction, 0.0, true, 1.0, false);
+  CHECK_OPTION_GE(early_stopping_patience, 0);
+  CHECK_OPTION_GE(standardization_samples, 1);
+  CHECK_OPTION_INTERVAL(threshold, 0.f, false, 1.f, false);
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 double GcnClassificationStats::Precision() const {
@@ -260,12 +271,12 @@ GcnModel GcnTrainer::Train(
     const std::vector<GcnTrainingScene>& scenes,
     const std::vector<GcnTrainingScene>& validation_scenes) {
   const GcnTrainingOptions& o = options_;
-  if (!o.Check()) ThrowError("invalid GCN training options");
+  o.Check();
   if (scenes.empty()) ThrowError("no training scenes");
   auto log = [&](const std::string& line) {
     if (o.log) o.log(line);
   };
-  const int threads = ResolveNumThreads(o.num_threads);
+  const int threads = EffectiveNumThreads(o.num_threads);
   const int dim = static_cast<int>(scenes[0].embeddings.cols());
   for (const auto* list : {&scenes, &validation_scenes}) {
     for (const auto& scene : *list) {
@@ -329,16 +340,17 @@ GcnModel GcnTrainer::Train(
     sampled.resize(std::min<size_t>(sampled.size(), o.standardization_samples));
     std::vector<Eigen::VectorXd> sums(sampled.size()), squares(sampled.size());
     std::vector<int64_t> counts(sampled.size(), 0);
-    ParallelFor(static_cast<int>(sampled.size()), threads, [&](int s, int t) {
-      QuerySubgraph subgraph;
-      pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
-      const auto x =
-          QesFeatures(subgraph, prepared[sampled[s].scene].scene->embeddings);
-      const Eigen::MatrixXd xd = x.cast<double>();
-      sums[s] = xd.colwise().sum().transpose();
-      squares[s] = xd.array().square().colwise().sum().transpose();
-      counts[s] = x.rows();
-    });
+    ParallelFor(
+        0, static_cast<int>(sampled.size()), threads, [&](int s, int t) {
+          QuerySubgraph subgraph;
+          pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
+          const auto x = QesFeatures(
+              subgraph, prepared[sampled[s].scene].scene->embeddings);
+          const Eigen::MatrixXd xd = x.cast<double>();
+          sums[s] = xd.colwise().sum().transpose();
+          squares[s] = xd.array().square().colwise().sum().transpose();
+          counts[s] = x.rows();
+        });
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim);
     Eigen::VectorXd square = Eigen::VectorXd::Zero(dim);
     int64_t count = 0;
@@ -369,15 +381,16 @@ GcnModel GcnTrainer::Train(
       // Calibrate: logits of the sampled subgraphs' 1-hop nodes to median 0
       // and unit standard deviation.
       std::vector<std::vector<float>> per_sample(sampled.size());
-      ParallelFor(static_cast<int>(sampled.size()), threads, [&](int s, int t) {
-        const GcnGraph<float> graph =
-            MakeSampleGraph(model,
-                            prepared[sampled[s].scene],
-                            sampled[s].query,
-                            &pool.Get(t, sampled[s].scene));
-        const ColVector<float> z = GcnForwardReference(model.params, graph);
-        per_sample[s].assign(z.data(), z.data() + z.size());
-      });
+      ParallelFor(
+          0, static_cast<int>(sampled.size()), threads, [&](int s, int t) {
+            const GcnGraph<float> graph =
+                MakeSampleGraph(model,
+                                prepared[sampled[s].scene],
+                                sampled[s].query,
+                                &pool.Get(t, sampled[s].scene));
+            const ColVector<float> z = GcnForwardReference(model.params, graph);
+            per_sample[s].assign(z.data(), z.data() + z.size());
+          });
       std::vector<float> logits;
       for (const auto& z : per_sample) {
         logits.insert(logits.end(), z.begin(), z.end());
@@ -479,7 +492,7 @@ GcnModel GcnTrainer::Train(
     for (size_t begin = 0; begin < order.size(); begin += o.batch_size) {
       const int count = static_cast<int>(
           std::min<size_t>(o.batch_size, order.size() - begin));
-      ParallelFor(count, threads, [&](int i, int t) {
+      ParallelFor(0, count, threads, [&](int i, int t) {
         const Sample& sample = order[begin + i];
         const GcnGraph<float> graph =
             MakeSampleGraph(model,
@@ -611,7 +624,7 @@ GcnClassificationStats EvaluateGcn(const GcnModel& model,
                                    const QesOptions& qes,
                                    float threshold,
                                    int num_threads) {
-  const int threads = ResolveNumThreads(num_threads);
+  const int threads = EffectiveNumThreads(num_threads);
   std::vector<PreparedScene> prepared;
   std::vector<Sample> samples;
   for (size_t s = 0; s < scenes.size(); ++s) {

@@ -91,7 +91,8 @@ struct GcnTrainingOptions {
   // to stdout. Set to an empty function to silence.
   std::function<void(const std::string&)> log = PrintGcnTrainingLog;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 struct GcnClassificationStats {

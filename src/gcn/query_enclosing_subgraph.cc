@@ -4,10 +4,15 @@
 #include <cmath>
 
 #include "util/error.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 
-bool QesOptions::Check() const { return k1 >= 1 && k2 >= 0 && u >= 0; }
+void QesOptions::Check() const {
+  CHECK_OPTION_GE(k1, 1);
+  CHECK_OPTION_GE(k2, 0);
+  CHECK_OPTION_GE(u, 0);
+}
 
 int QesOptions::RequiredK() const { return std::max(k1, std::max(k2, u)); }
 
@@ -79,14 +84,7 @@ AggregationMatrix ComputeAggregation(const QuerySubgraph& subgraph,
 
 QesBuilder::QesBuilder(const KnnGraph& knn, const QesOptions& options)
     : knn_(knn), options_(options), local_index_(knn.NumImages(), -1) {
-  if (!options_.Check()) {
-    ThrowError("invalid QES options: k1 = ",
-               options_.k1,
-               ", k2 = ",
-               options_.k2,
-               ", u = ",
-               options_.u);
-  }
+  options_.Check();
   if (knn_.K() < options_.RequiredK()) {
     ThrowError("the kNN graph has ",
                knn_.K(),

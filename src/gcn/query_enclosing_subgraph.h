@@ -19,7 +19,8 @@ struct QesOptions {
   // collection that lie in the subgraph.
   int u = 5;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
   // Largest neighbour count the kNN graph must provide: max(k1, k2, u).
   int RequiredK() const;
 };

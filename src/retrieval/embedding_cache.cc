@@ -6,12 +6,12 @@
 
 #include <cstring>
 #include <iostream>
-#include <thread>
 #include <unordered_map>
 
 #include "retrieval/hash.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 namespace {
@@ -113,7 +113,7 @@ EmbeddingMatrix ComputeDatabaseEmbeddings(const Database& database,
                                           int num_threads,
                                           EmbeddingCacheStats* stats) {
   THROW_CHECK(image_ids != nullptr);
-  num_threads = RetrievalNumThreads(num_threads);
+  num_threads = EffectiveNumThreads(num_threads);
   const std::vector<DatabaseImage> images = database.ReadAllImages();
   const CacheEntries cache = ReadCache(cache_path, embedding);
   EmbeddingMatrix embeddings(images.size(), embedding.OutputDim());
@@ -130,22 +130,19 @@ EmbeddingMatrix ComputeDatabaseEmbeddings(const Database& database,
       batch.push_back(database.ReadDescriptors(images[i].image_id));
     }
     std::vector<char> cached(end - begin, 0);
-    std::vector<std::thread> threads;
-    for (int t = 0; t < num_threads; ++t) {
-      threads.emplace_back([&, t]() {
-        for (size_t i = begin + t; i < end; i += num_threads) {
-          keys[i] = ImageFeatureKey(images[i].name, batch[i - begin]);
-          const auto hit = cache.find(keys[i]);
-          if (hit != cache.end()) {
-            embeddings.row(i) = hit->second;
-            cached[i - begin] = 1;
-          } else {
-            embeddings.row(i) = embedding.Embed(batch[i - begin]);
-          }
-        }
-      });
-    }
-    for (auto& thread : threads) thread.join();
+    ParallelFor(static_cast<int>(begin),
+                static_cast<int>(end),
+                num_threads,
+                [&](int i) {
+                  keys[i] = ImageFeatureKey(images[i].name, batch[i - begin]);
+                  const auto hit = cache.find(keys[i]);
+                  if (hit != cache.end()) {
+                    embeddings.row(i) = hit->second;
+                    cached[i - begin] = 1;
+                  } else {
+                    embeddings.row(i) = embedding.Embed(batch[i - begin]);
+                  }
+                });
     for (size_t i = begin; i < end; ++i) {
       image_ids->push_back(images[i].image_id);
       if (cached[i - begin]) {

@@ -8,12 +8,14 @@
 #include "retrieval/hash.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
 
-bool GlobalDescriptorOptions::Check() const {
-  return vlad.Check() && (num_threads == -1 || num_threads > 0);
+void GlobalDescriptorOptions::Check() const {
+  vlad.Check();
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 std::string SelfTrainedModelPath(const std::string& database_path) {
@@ -90,9 +92,7 @@ VladEmbedding LoadOrTrainSelfEmbedding(const Database& database,
 EmbeddingMatrix ComputeGlobalDescriptors(const Database& database,
                                          const GlobalDescriptorOptions& options,
                                          std::vector<image_t>* image_ids) {
-  if (!options.Check()) {
-    ThrowError("invalid global descriptor options");
-  }
+  options.Check();
   if (!options.descriptor_path.empty()) {
     return MatchDescriptorsToImages(
         ReadGlobalDescriptors(options.descriptor_path),

@@ -29,7 +29,8 @@ struct GlobalDescriptorOptions {
   // Threads; -1 uses all cores. Results do not depend on it.
   int num_threads = -1;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // "<database_path>.gcn-vlad.bin".

@@ -3,17 +3,19 @@
 #include <algorithm>
 #include <limits>
 #include <random>
-#include <thread>
 
 #include "math/dense_product.h"
 #include "retrieval/knn.h"
 #include "util/error.h"
+#include "util/option_check.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 
-bool KMeansOptions::Check() const {
-  return num_clusters > 0 && max_iterations >= 0 &&
-         (num_threads == -1 || num_threads > 0);
+void KMeansOptions::Check() const {
+  CHECK_OPTION_GE(num_clusters, 1);
+  CHECK_OPTION_GE(max_iterations, 0);
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 namespace {
@@ -24,17 +26,10 @@ const int kChunkSize = 4096;
 template <typename Fn>
 void ForEachChunk(int num_points, int num_threads, const Fn& fn) {
   const int num_chunks = (num_points + kChunkSize - 1) / kChunkSize;
-  num_threads = std::max(1, std::min(num_threads, num_chunks));
-  std::vector<std::thread> threads;
-  for (int t = 0; t < num_threads; ++t) {
-    threads.emplace_back([&, t]() {
-      for (int chunk = t; chunk < num_chunks; chunk += num_threads) {
-        const int begin = chunk * kChunkSize;
-        fn(begin, std::min(num_points, begin + kChunkSize));
-      }
-    });
-  }
-  for (auto& thread : threads) thread.join();
+  ParallelFor(0, num_chunks, num_threads, [&](int chunk) {
+    const int begin = chunk * kChunkSize;
+    fn(begin, std::min(num_points, begin + kChunkSize));
+  });
 }
 
 // Assigns points to centres and returns each point's squared distance.
@@ -122,13 +117,11 @@ std::vector<int> AssignToNearestCenter(const FloatMatrix& points,
                                        const FloatMatrix& centers,
                                        int num_threads) {
   THROW_CHECK(points.cols() == centers.cols() && centers.rows() > 0);
-  return Assign(points, centers, RetrievalNumThreads(num_threads), nullptr);
+  return Assign(points, centers, EffectiveNumThreads(num_threads), nullptr);
 }
 
 FloatMatrix KMeans(const FloatMatrix& points, const KMeansOptions& options) {
-  if (!options.Check()) {
-    ThrowError("invalid k-means options");
-  }
+  options.Check();
   const int num_points = static_cast<int>(points.rows());
   const int dim = static_cast<int>(points.cols());
   const int num_clusters = options.num_clusters;
@@ -136,7 +129,7 @@ FloatMatrix KMeans(const FloatMatrix& points, const KMeansOptions& options) {
     ThrowError(
         "k-means needs at least ", num_clusters, " points, got ", num_points);
   }
-  const int num_threads = RetrievalNumThreads(options.num_threads);
+  const int num_threads = EffectiveNumThreads(options.num_threads);
   std::mt19937 rng(options.seed);
   FloatMatrix centers = KMeansPlusPlus(points, num_clusters, &rng);
   std::vector<int> assignment;

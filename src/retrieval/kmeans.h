@@ -25,7 +25,8 @@ struct KMeansOptions {
   // accumulated sequentially in point order.
   int num_threads = -1;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // Index of the nearest centre of every row of points (squared L2; ties go to

@@ -1,28 +1,24 @@
 #include "retrieval/knn.h"
 
 #include <algorithm>
-#include <atomic>
 #include <limits>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 #include "math/dense_product.h"
 #include "util/error.h"
+#include "util/option_check.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 
-bool KnnOptions::Check() const {
-  return k >= 0 && (num_threads == -1 || num_threads > 0) && block_size > 0 &&
-         (method == "exact" || method == "faiss_hnsw") && hnsw_m > 1 &&
-         hnsw_ef_search > 0;
-}
-
-int RetrievalNumThreads(int num_threads) {
-  if (num_threads > 0) {
-    return num_threads;
-  }
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+void KnnOptions::Check() const {
+  CHECK_OPTION_GE(k, 0);
+  CHECK_OPTION_NUM_THREADS(num_threads);
+  CHECK_OPTION_GE(block_size, 1);
+  CHECK_OPTION_ONE_OF(method, "exact", "faiss_hnsw");
+  CHECK_OPTION_GE(hnsw_m, 2);
+  CHECK_OPTION_GE(hnsw_ef_search, 1);
 }
 
 namespace {
@@ -97,36 +93,11 @@ class TopKHeaps {
   std::vector<int> sizes_;
 };
 
-// Runs fn(task) for task in [0, num_tasks) on num_threads threads, handing
-// out tasks dynamically. Callers make fn's effect independent of order.
-template <typename Fn>
-void ParallelFor(int num_tasks, int num_threads, const Fn& fn) {
-  num_threads = std::max(1, std::min(num_threads, num_tasks));
-  if (num_threads == 1) {
-    for (int task = 0; task < num_tasks; ++task) fn(task, 0);
-    return;
-  }
-  std::atomic<int> next(0);
-  std::vector<std::thread> threads;
-  for (int t = 0; t < num_threads; ++t) {
-    threads.emplace_back([&, t]() {
-      for (int task = next++; task < num_tasks; task = next++) {
-        fn(task, t);
-      }
-    });
-  }
-  for (auto& thread : threads) thread.join();
-}
-
 }  // namespace
 
 KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
                          const KnnOptions& options) {
-  if (!options.Check()) {
-    ThrowError(
-        "invalid kNN options (k >= 0, num_threads -1 or > 0, "
-        "block_size > 0)");
-  }
+  options.Check();
   if (!embeddings.allFinite()) {
     ThrowError("kNN input has non-finite (NaN or infinite) values");
   }
@@ -151,7 +122,7 @@ KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
   for (int bi = 0; bi < num_blocks; ++bi) {
     for (int bj = bi; bj < num_blocks; ++bj) tasks.emplace_back(bi, bj);
   }
-  const int num_threads = RetrievalNumThreads(options.num_threads);
+  const int num_threads = EffectiveNumThreads(options.num_threads);
 
   TopKHeaps heaps(num_rows, k);
   std::vector<std::mutex> block_mutexes(num_blocks);
@@ -160,64 +131,66 @@ KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
   std::vector<std::vector<float>> thresholds(products.size());
   const float* data = embeddings.data();
 
-  ParallelFor(
-      static_cast<int>(tasks.size()), num_threads, [&](int task, int thread) {
-        const int bi = tasks[task].first;
-        const int bj = tasks[task].second;
-        const int i0 = bi * block_size;
-        const int j0 = bj * block_size;
-        const int mi = std::min(block_size, num_rows - i0);
-        const int mj = std::min(block_size, num_rows - j0);
-        std::vector<float>& s = products[thread];
-        s.resize(static_cast<size_t>(mi) * mj);
-        MultiplyABt(data + static_cast<size_t>(i0) * dim,
-                    mi,
-                    data + static_cast<size_t>(j0) * dim,
-                    mj,
-                    dim,
-                    s.data());
-        if (bi == bj) {
-          // One value per unordered pair, also within a block.
-          for (int r = 0; r < mi; ++r) {
-            for (int c = 0; c < r; ++c) {
-              s[static_cast<size_t>(r) * mj + c] =
-                  s[static_cast<size_t>(c) * mj + r];
-            }
-          }
-        }
-        {
-          std::lock_guard<std::mutex> lock(block_mutexes[bi]);
-          for (int r = 0; r < mi; ++r) {
-            const int i = i0 + r;
-            const float* row = s.data() + static_cast<size_t>(r) * mj;
-            float threshold = heaps.Threshold(i);
-            for (int c = 0; c < mj; ++c) {
-              const int j = j0 + c;
-              if (row[c] < threshold || j == i) continue;
-              heaps.Push(i, {row[c], j});
-              threshold = heaps.Threshold(i);
-            }
-          }
-        }
-        if (bi != bj) {
-          // Column-wise update of block J's rows, scanning S row by
-          // row for cache locality with one threshold per column.
-          std::lock_guard<std::mutex> lock(block_mutexes[bj]);
-          std::vector<float>& threshold = thresholds[thread];
-          threshold.resize(mj);
-          for (int c = 0; c < mj; ++c) {
-            threshold[c] = heaps.Threshold(j0 + c);
-          }
-          for (int r = 0; r < mi; ++r) {
-            const float* row = s.data() + static_cast<size_t>(r) * mj;
-            for (int c = 0; c < mj; ++c) {
-              if (row[c] < threshold[c]) continue;
-              heaps.Push(j0 + c, {row[c], i0 + r});
-              threshold[c] = heaps.Threshold(j0 + c);
-            }
-          }
-        }
-      });
+  ParallelFor(0,
+              static_cast<int>(tasks.size()),
+              num_threads,
+              [&](int task, int thread) {
+                const int bi = tasks[task].first;
+                const int bj = tasks[task].second;
+                const int i0 = bi * block_size;
+                const int j0 = bj * block_size;
+                const int mi = std::min(block_size, num_rows - i0);
+                const int mj = std::min(block_size, num_rows - j0);
+                std::vector<float>& s = products[thread];
+                s.resize(static_cast<size_t>(mi) * mj);
+                MultiplyABt(data + static_cast<size_t>(i0) * dim,
+                            mi,
+                            data + static_cast<size_t>(j0) * dim,
+                            mj,
+                            dim,
+                            s.data());
+                if (bi == bj) {
+                  // One value per unordered pair, also within a block.
+                  for (int r = 0; r < mi; ++r) {
+                    for (int c = 0; c < r; ++c) {
+                      s[static_cast<size_t>(r) * mj + c] =
+                          s[static_cast<size_t>(c) * mj + r];
+                    }
+                  }
+                }
+                {
+                  std::lock_guard<std::mutex> lock(block_mutexes[bi]);
+                  for (int r = 0; r < mi; ++r) {
+                    const int i = i0 + r;
+                    const float* row = s.data() + static_cast<size_t>(r) * mj;
+                    float threshold = heaps.Threshold(i);
+                    for (int c = 0; c < mj; ++c) {
+                      const int j = j0 + c;
+                      if (row[c] < threshold || j == i) continue;
+                      heaps.Push(i, {row[c], j});
+                      threshold = heaps.Threshold(i);
+                    }
+                  }
+                }
+                if (bi != bj) {
+                  // Column-wise update of block J's rows, scanning S row by
+                  // row for cache locality with one threshold per column.
+                  std::lock_guard<std::mutex> lock(block_mutexes[bj]);
+                  std::vector<float>& threshold = thresholds[thread];
+                  threshold.resize(mj);
+                  for (int c = 0; c < mj; ++c) {
+                    threshold[c] = heaps.Threshold(j0 + c);
+                  }
+                  for (int r = 0; r < mi; ++r) {
+                    const float* row = s.data() + static_cast<size_t>(r) * mj;
+                    for (int c = 0; c < mj; ++c) {
+                      if (row[c] < threshold[c]) continue;
+                      heaps.Push(j0 + c, {row[c], i0 + r});
+                      threshold[c] = heaps.Threshold(j0 + c);
+                    }
+                  }
+                }
+              });
 
   std::vector<Neighbor> sorted(k);
   for (int i = 0; i < num_rows; ++i) {

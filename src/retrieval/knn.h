@@ -33,7 +33,8 @@ struct KnnOptions {
   int hnsw_m = 32;
   int hnsw_ef_search = 256;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // The k nearest neighbours of every image, the image itself excluded (by
@@ -68,8 +69,5 @@ KnnGraph ComputeApproximateKnn(const EmbeddingMatrix& embeddings,
 // Dispatches on options.method.
 KnnGraph ComputeKnn(const EmbeddingMatrix& embeddings,
                     const KnnOptions& options);
-
-// Resolves num_threads = -1 (all cores) to a positive count.
-int RetrievalNumThreads(int num_threads);
 
 }  // namespace colmap_gcn

@@ -14,9 +14,7 @@ bool FaissAvailable() { return true; }
 
 KnnGraph ComputeApproximateKnn(const EmbeddingMatrix& embeddings,
                                const KnnOptions& options) {
-  if (!options.Check()) {
-    ThrowError("invalid kNN options");
-  }
+  options.Check();
   if (!embeddings.allFinite()) {
     ThrowError("kNN input has non-finite (NaN or infinite) values");
   }

@@ -4,13 +4,16 @@
 #include <unordered_set>
 
 #include "util/error.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 
-bool KnnPairingOptions::Check() const {
-  return k > 0 && descriptors.Check() &&
-         (knn_method == "exact" || knn_method == "faiss_hnsw") &&
-         (num_threads == -1 || num_threads > 0) && block_size > 0;
+void KnnPairingOptions::Check() const {
+  CHECK_OPTION_GE(k, 1);
+  descriptors.Check();
+  CHECK_OPTION_ONE_OF(knn_method, "exact", "faiss_hnsw");
+  CHECK_OPTION_NUM_THREADS(num_threads);
+  CHECK_OPTION_GE(block_size, 1);
 }
 
 std::vector<ImagePair> KnnGraphToPairs(const KnnGraph& graph,
@@ -42,11 +45,7 @@ KnnPairGenerator::KnnPairGenerator(const KnnPairingOptions& options,
 KnnPairGenerator::KnnPairGenerator(const KnnPairingOptions& options,
                                    const Database& database)
     : options_(options) {
-  if (!options_.Check()) {
-    ThrowError(
-        "invalid kNN pairing options (k > 0, knn_method exact or "
-        "faiss_hnsw)");
-  }
+  options_.Check();
   GlobalDescriptorOptions descriptor_options = options_.descriptors;
   descriptor_options.num_threads = options_.num_threads;
   descriptor_options.vlad.num_threads = options_.num_threads;
@@ -58,11 +57,7 @@ KnnPairGenerator::KnnPairGenerator(const KnnPairingOptions& options,
 
 void KnnPairGenerator::Build(const EmbeddingMatrix& embeddings,
                              const std::vector<image_t>& image_ids) {
-  if (!options_.Check()) {
-    ThrowError(
-        "invalid kNN pairing options (k > 0, knn_method exact or "
-        "faiss_hnsw)");
-  }
+  options_.Check();
   THROW_CHECK(static_cast<size_t>(embeddings.rows()) == image_ids.size());
   KnnOptions knn_options;
   knn_options.k = options_.k;

@@ -26,7 +26,8 @@ struct KnnPairingOptions {
   // Number of image pairs in one block.
   int block_size = 1225;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // The unordered pairs {i, j} for j among the k nearest neighbours of i, each

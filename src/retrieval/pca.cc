@@ -7,10 +7,14 @@
 
 #include "math/dense_product.h"
 #include "util/error.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 
-bool PcaOptions::Check() const { return dim > 0 && shrinkage >= 0; }
+void PcaOptions::Check() const {
+  CHECK_OPTION_GE(dim, 1);
+  CHECK_OPTION_GE(shrinkage, 0.0);
+}
 
 FloatMatrix PcaWhitening::Apply(const FloatMatrix& x) const {
   THROW_CHECK(x.cols() == InputDim());
@@ -27,9 +31,7 @@ FloatMatrix PcaWhitening::Apply(const FloatMatrix& x) const {
 
 PcaWhitening TrainPcaWhitening(const FloatMatrix& samples,
                                const PcaOptions& options) {
-  if (!options.Check()) {
-    ThrowError("invalid PCA options (dim > 0, shrinkage >= 0)");
-  }
+  options.Check();
   const int num_samples = static_cast<int>(samples.rows());
   const int input_dim = static_cast<int>(samples.cols());
   if (num_samples < 2) {

@@ -15,7 +15,8 @@ struct PcaOptions {
   // database itself needs shrinkage > 0; see docs/retrieval.md.
   double shrinkage = 0.0;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // y = projection * (x - mean), projection: dim x input_dim with the

@@ -3,20 +3,25 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <thread>
 
 #include "math/dense_product.h"
 #include "retrieval/hash.h"
 #include "retrieval/knn.h"
 #include "util/error.h"
+#include "util/option_check.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 
-bool VladOptions::Check() const {
-  return num_words > 0 && dim > 0 && shrinkage >= 0 &&
-         self_training_shrinkage >= 0 && max_training_descriptors > 0 &&
-         kmeans_iterations >= 0 && max_pca_images >= 2 &&
-         (num_threads == -1 || num_threads > 0);
+void VladOptions::Check() const {
+  CHECK_OPTION_GE(num_words, 1);
+  CHECK_OPTION_GE(dim, 1);
+  CHECK_OPTION_GE(shrinkage, 0.0);
+  CHECK_OPTION_GE(self_training_shrinkage, 0.0);
+  CHECK_OPTION_GE(max_training_descriptors, 1);
+  CHECK_OPTION_GE(kmeans_iterations, 0);
+  CHECK_OPTION_GE(max_pca_images, 2);
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 FloatMatrix RootSift(const FeatureDescriptors& descriptors) {
@@ -129,15 +134,10 @@ void ForEachImageParallel(const std::vector<TrainingImage>& images,
       const TrainingImage& image = images[indices[b]];
       batch.push_back(image.database->ReadDescriptors(image.image_id));
     }
-    std::vector<std::thread> threads;
-    for (int t = 0; t < num_threads; ++t) {
-      threads.emplace_back([&, t]() {
-        for (size_t b = begin + t; b < end; b += num_threads) {
-          fn(b, batch[b - begin]);
-        }
-      });
-    }
-    for (auto& thread : threads) thread.join();
+    ParallelFor(static_cast<int>(begin),
+                static_cast<int>(end),
+                num_threads,
+                [&](int b) { fn(b, batch[b - begin]); });
   }
 }
 
@@ -146,10 +146,8 @@ void ForEachImageParallel(const std::vector<TrainingImage>& images,
 VladEmbedding TrainVladEmbedding(const std::vector<const Database*>& databases,
                                  const VladOptions& options,
                                  double shrinkage) {
-  if (!options.Check()) {
-    ThrowError("invalid VLAD options");
-  }
-  const int num_threads = RetrievalNumThreads(options.num_threads);
+  options.Check();
+  const int num_threads = EffectiveNumThreads(options.num_threads);
   std::vector<TrainingImage> images;
   size_t total_descriptors = 0;
   for (const Database* database : databases) {

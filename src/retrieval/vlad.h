@@ -46,7 +46,8 @@ struct VladOptions {
   // Threads for training; -1 uses all cores. Results do not depend on it.
   int num_threads = -1;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // The embedding f(I) of the paper's Eq. 1 built from COLMAP's own features:

@@ -1,13 +1,10 @@
 #include "synthetic/scene.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "util/error.h"
+#include "util/threading.h"
 
 namespace colmap_gcn {
 
@@ -144,27 +141,29 @@ void Scene::AddBox(const Eigen::Vector2d& center,
 void Scene::GenerateTextures(const std::vector<cv::Mat>& user_images,
                              int num_threads) {
   textures.assign(texture_specs.size(), Texture());
-  ParallelFor(static_cast<int>(texture_specs.size()), num_threads, [&](int i) {
-    const TextureSpec& spec = texture_specs[i];
-    cv::Mat image;
-    switch (spec.kind) {
-      case TextureSpec::Kind::kRandom:
-        image = GenerateRandomTexture(spec.seed, spec.width, spec.height);
-        break;
-      case TextureSpec::Kind::kWindowTile:
-        image = GenerateWindowTileTexture(spec.seed, spec.width, spec.height);
-        break;
-      case TextureSpec::Kind::kSmooth:
-        image = GenerateSmoothTexture(spec.seed, spec.width, spec.height);
-        break;
-      case TextureSpec::Kind::kUser:
-        THROW_CHECK(spec.user_index >= 0 &&
-                    spec.user_index < static_cast<int>(user_images.size()));
-        image = user_images[spec.user_index];
-        break;
-    }
-    textures[i] = Texture(image);
-  });
+  ParallelFor(
+      0, static_cast<int>(texture_specs.size()), num_threads, [&](int i) {
+        const TextureSpec& spec = texture_specs[i];
+        cv::Mat image;
+        switch (spec.kind) {
+          case TextureSpec::Kind::kRandom:
+            image = GenerateRandomTexture(spec.seed, spec.width, spec.height);
+            break;
+          case TextureSpec::Kind::kWindowTile:
+            image =
+                GenerateWindowTileTexture(spec.seed, spec.width, spec.height);
+            break;
+          case TextureSpec::Kind::kSmooth:
+            image = GenerateSmoothTexture(spec.seed, spec.width, spec.height);
+            break;
+          case TextureSpec::Kind::kUser:
+            THROW_CHECK(spec.user_index >= 0 &&
+                        spec.user_index < static_cast<int>(user_images.size()));
+            image = user_images[spec.user_index];
+            break;
+        }
+        textures[i] = Texture(image);
+      });
   UpdateTexelDensities();
 }
 
@@ -218,43 +217,6 @@ std::vector<Eigen::Vector2d> RegularPolygon(int n,
         center + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
   }
   return polygon;
-}
-
-int EffectiveNumThreads(int num_threads) {
-  if (num_threads > 0) {
-    return num_threads;
-  }
-  return std::max(1u, std::thread::hardware_concurrency());
-}
-
-void ParallelFor(int n, int num_threads, const std::function<void(int)>& fn) {
-  const int threads = std::min(EffectiveNumThreads(num_threads), n);
-  if (threads <= 1) {
-    for (int i = 0; i < n; ++i) fn(i);
-    return;
-  }
-  std::atomic<int> next(0);
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&]() {
-    while (true) {
-      const int i = next.fetch_add(1);
-      if (i >= n) {
-        return;
-      }
-      try {
-        fn(i);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        next = n;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (auto& thread : pool) thread.join();
-  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace colmap_gcn

@@ -180,11 +180,4 @@ std::vector<Eigen::Vector2d> RegularPolygon(
     double phase,
     const Eigen::Vector2d& center = Eigen::Vector2d::Zero());
 
-// Runs fn(i) for i in [0, n) on num_threads threads (dynamic scheduling).
-// Exceptions are rethrown (the first one) after all threads joined.
-void ParallelFor(int n, int num_threads, const std::function<void(int)>& fn);
-
-// num_threads <= 0 means all hardware threads.
-int EffectiveNumThreads(int num_threads);
-
 }  // namespace colmap_gcn

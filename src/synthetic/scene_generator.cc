@@ -16,6 +16,8 @@
 #include "synthetic/texture.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
+#include "util/threading.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
@@ -74,43 +76,25 @@ std::string DistractorImageName(int index) {
   return buffer;
 }
 
-std::string SyntheticSceneOptions::CheckMessage() const {
-  std::ostringstream error;
-  if (family != "ordinary" && family != "repetitive" && family != "symmetric") {
-    error << "family must be ordinary, repetitive or symmetric, got '" << family
-          << "'";
-  } else if (num_images < 2 || num_images > 100000) {
-    error << "num_images must be in [2, 100000], got " << num_images;
-  } else if (num_distractors < 0 || num_distractors > 100000) {
-    error << "num_distractors must be in [0, 100000], got " << num_distractors;
-  } else if (width < 16 || height < 16 || width > 16384 || height > 16384) {
-    error << "width and height must be in [16, 16384], got " << width << "x"
-          << height;
-  } else if (!(focal_length_factor > 0.05 && focal_length_factor < 100.0)) {
-    error << "focal_length_factor must be in (0.05, 100), got "
-          << focal_length_factor;
-  } else if (seed < 0) {
-    error << "seed must be >= 0, got " << seed;
-  } else if (num_surface_samples < 100 || num_surface_samples > 50000000) {
-    error << "num_surface_samples must be in [100, 50000000], got "
-          << num_surface_samples;
-  } else if (symmetric_sides < 3 || symmetric_sides > 64) {
-    error << "symmetric_sides must be in [3, 64], got " << symmetric_sides;
-  } else if (!(min_view_cosine >= 0.0 && min_view_cosine < 1.0)) {
-    error << "min_view_cosine must be in [0, 1), got " << min_view_cosine;
-  } else if (jpeg_quality < 1 || jpeg_quality > 100) {
-    error << "jpeg_quality must be in [1, 100], got " << jpeg_quality;
-  }
-  return error.str();
+void SyntheticSceneOptions::Check() const {
+  CHECK_OPTION_ONE_OF(family, "ordinary", "repetitive", "symmetric");
+  CHECK_OPTION_RANGE(num_images, 2, 100000);
+  CHECK_OPTION_RANGE(num_distractors, 0, 100000);
+  CHECK_OPTION_RANGE(width, 16, 16384);
+  CHECK_OPTION_RANGE(height, 16, 16384);
+  CHECK_OPTION_INTERVAL(focal_length_factor, 0.05, false, 100.0, false);
+  CHECK_OPTION_GE(seed, 0);
+  CHECK_OPTION_NUM_THREADS(num_threads);
+  CHECK_OPTION_RANGE(num_surface_samples, 100, 50000000);
+  CHECK_OPTION_RANGE(symmetric_sides, 3, 64);
+  CHECK_OPTION_INTERVAL(min_view_cosine, 0.0, true, 1.0, false);
+  CHECK_OPTION_RANGE(jpeg_quality, 1, 100);
 }
 
 SyntheticSceneSummary GenerateSyntheticScene(
     const SyntheticSceneOptions& options, const std::string& output_path) {
   const Timer timer;
-  const std::string problem = options.CheckMessage();
-  if (!problem.empty()) {
-    ThrowError("invalid synthetic scene options: ", problem);
-  }
+  options.Check();
   if (output_path.empty()) {
     ThrowError("output_path is empty");
   }
@@ -146,7 +130,7 @@ SyntheticSceneSummary GenerateSyntheticScene(
   // Scene images: render and compute the visible samples, in parallel.
   const int num_images = options.num_images;
   std::vector<std::vector<SampleObservation>> visible(num_images);
-  ParallelFor(num_images, num_threads, [&](int i) {
+  ParallelFor(0, num_images, num_threads, [&](int i) {
     const PinholeCamera& camera = world.cameras[i];
     SyntheticRandom rng(SyntheticRandom::Mix(seed, 1000003ULL + i));
     const PhotometricParams photometric = options.photometric_variation
@@ -161,7 +145,7 @@ SyntheticSceneSummary GenerateSyntheticScene(
   });
 
   // Distractors: each from its own unrelated little world.
-  ParallelFor(options.num_distractors, num_threads, [&](int d) {
+  ParallelFor(0, options.num_distractors, num_threads, [&](int d) {
     WorldParams distractor_params = params;
     distractor_params.num_images = 1;
     distractor_params.seed = SyntheticRandom::Mix(seed, 2000003ULL + d);

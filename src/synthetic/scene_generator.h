@@ -18,7 +18,7 @@ struct SyntheticSceneOptions {
   // Focal length in pixels = focal_length_factor * max(width, height).
   double focal_length_factor = 1.0;
   int seed = 0;
-  // Threads for textures and rendering; <= 0: all hardware threads. The
+  // Threads for textures and rendering; -1: all hardware threads. The
   // output does not depend on it.
   int num_threads = -1;
   // Optional folder of texture images replacing the procedural "random"
@@ -35,9 +35,8 @@ struct SyntheticSceneOptions {
   // Per-image exposure, blur and noise variation.
   bool photometric_variation = true;
 
-  // The first problem with the options, or "" if they are valid.
-  std::string CheckMessage() const;
-  bool Check() const { return CheckMessage().empty(); }
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 struct SyntheticSceneSummary {

@@ -13,6 +13,7 @@
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -115,9 +116,13 @@ std::vector<LabelledScene> WithoutHeldOutScenes(
   return kept;
 }
 
-bool GcnTrainingPipelineOptions::Check() const {
-  return vlad.Check() && labels.Check() && training.Check() &&
-         (threshold < 0 || (threshold > 0 && threshold < 1));
+void GcnTrainingPipelineOptions::Check() const {
+  vlad.Check();
+  labels.Check();
+  training.Check();
+  CHECK_OPTION(threshold,
+               threshold < 0 || (threshold > 0 && threshold < 1),
+               "be < 0 (chosen on the validation scenes) or in (0, 1)");
 }
 
 GcnTrainingScene MergeTrainingScenes(
@@ -207,9 +212,7 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
 GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
                        const std::vector<LabelledScene>& validation_scenes,
                        const GcnTrainingPipelineOptions& options) {
-  if (!options.Check()) {
-    ThrowError("invalid GCN training options");
-  }
+  options.Check();
   // Each database once, in order, whether a scene or a collection's part.
   std::vector<std::string> database_paths;
   std::set<std::string> seen;

@@ -54,7 +54,8 @@ struct GcnTrainingPipelineOptions {
   // threshold (> 0) replaces training.threshold too.
   double threshold = 0.5;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 // The collection of `parts`: their embeddings stacked in order, their

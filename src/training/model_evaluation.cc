@@ -8,6 +8,7 @@
 #include "evaluation/figures.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 namespace {
@@ -247,22 +248,27 @@ std::string FormatFixedKComparison(
   return out.str();
 }
 
-bool GcnSensitivityOptions::Check() const {
+void GcnSensitivityOptions::Check() const {
   auto positive = [](const std::vector<int>& values) {
     return std::all_of(
         values.begin(), values.end(), [](int v) { return v > 0; });
   };
-  return positive(k1_values) && positive(k2_values) && positive(u_values) &&
-         std::all_of(thresholds.begin(), thresholds.end(), [](double t) {
-           return t > 0 && t < 1;
-         });
+  CHECK_OPTION(k1_values, positive(k1_values), "be positive");
+  CHECK_OPTION(k2_values, positive(k2_values), "be positive");
+  CHECK_OPTION(u_values, positive(u_values), "be positive");
+  CHECK_OPTION(thresholds,
+               std::all_of(thresholds.begin(),
+                           thresholds.end(),
+                           [](double t) { return t > 0 && t < 1; }),
+               "be in (0, 1)");
+  CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
 std::vector<GcnSensitivityPoint> ComputeGcnSensitivity(
     const GcnModel& model,
     const std::vector<GcnTrainingScene>& scenes,
     const GcnSensitivityOptions& options) {
-  if (!options.Check()) ThrowError("invalid sensitivity options");
+  options.Check();
   std::vector<GcnSensitivityPoint> points;
   const auto sweep = [&](const std::string& parameter,
                          const std::vector<int>& values,

@@ -76,7 +76,8 @@ struct GcnSensitivityOptions {
       0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
   int num_threads = -1;
 
-  bool Check() const;
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
 };
 
 struct GcnSensitivityPoint {

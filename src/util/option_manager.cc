@@ -1,9 +1,13 @@
 #include "util/option_manager.h"
 
+#include <cerrno>
+#include <climits>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
 #include "util/error.h"
+#include "util/option_check.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -73,6 +77,50 @@ bool OptionManager::Parse(int argc, char** argv) {
                " -h)");
   }
   return true;
+}
+
+void OptionManager::Check(const std::function<void()>& check) const {
+  try {
+    check();
+  } catch (const OptionError& error) {
+    const std::string flag = FlagName(error.Field());
+    if (flag.empty()) throw;
+    throw Error(error.MessageFor(flag));
+  }
+}
+
+std::string OptionManager::FlagName(const void* field) const {
+  for (const auto& [address, flag] : flags_) {
+    if (address == field) return flag;
+  }
+  return "";
+}
+
+int IntArgument(const std::vector<std::string>& args,
+                const std::string& name,
+                int default_value) {
+  const std::string option = "--" + name;
+  for (size_t i = 0; i < args.size(); ++i) {
+    std::string value;
+    if (args[i] == option) {
+      if (i + 1 >= args.size()) ThrowError(option, " has no value");
+      value = args[i + 1];
+    } else if (StringStartsWith(args[i], option + "=")) {
+      value = args[i].substr(option.size() + 1);
+    } else {
+      continue;
+    }
+    const std::string trimmed = StringTrim(value);
+    char* end = nullptr;
+    errno = 0;
+    const long parsed = std::strtol(trimmed.c_str(), &end, 10);
+    if (trimmed.empty() || *end != '\0' || errno == ERANGE ||
+        parsed < INT_MIN || parsed > INT_MAX) {
+      ThrowError(option, " must be an integer (got \"", value, "\")");
+    }
+    return static_cast<int>(parsed);
+  }
+  return default_value;
 }
 
 std::vector<std::string> ArgumentsWithPrefix(

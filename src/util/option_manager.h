@@ -1,7 +1,9 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <boost/program_options.hpp>
@@ -38,6 +40,15 @@ class OptionManager {
 
   std::string Help() const;
 
+  // Runs check (an Options::Check(), called once right after Parse and
+  // before any work) and rethrows an OptionError about a member bound to a
+  // flag as an Error naming the flag: "--GcnMatching.k1 must be >= 1 (got
+  // 0)". Other errors pass unchanged.
+  void Check(const std::function<void()>& check) const;
+
+  // "--<name>" of the flag bound to the member at `field`, or "".
+  std::string FlagName(const void* field) const;
+
  private:
   std::string command_;
   std::string summary_;
@@ -45,6 +56,7 @@ class OptionManager {
   std::vector<std::string> required_;
   std::vector<std::string> pass_through_prefixes_;
   std::vector<std::string> pass_through_;
+  std::vector<std::pair<const void*, std::string>> flags_;
 };
 
 // The arguments of `args` (as collected by PassThroughArguments) whose
@@ -54,6 +66,14 @@ std::vector<std::string> ArgumentsWithPrefix(
     const std::vector<std::string>& args,
     const std::vector<std::string>& prefixes);
 
+// The integer value of pass-through option `name` (e.g.
+// "SiftMatching.min_num_inliers", given as "--name value" or "--name=value")
+// in args, or default_value when absent; throws Error naming the option and
+// the value when it is not an integer.
+int IntArgument(const std::vector<std::string>& args,
+                const std::string& name,
+                int default_value);
+
 template <typename T>
 void OptionManager::AddRequiredOption(const std::string& name,
                                       T* option,
@@ -62,6 +82,7 @@ void OptionManager::AddRequiredOption(const std::string& name,
                        boost::program_options::value<T>(option)->required(),
                        help.c_str());
   required_.push_back(name);
+  flags_.emplace_back(option, "--" + name);
 }
 
 template <typename T>
@@ -72,6 +93,7 @@ void OptionManager::AddDefaultOption(const std::string& name,
       name.c_str(),
       boost::program_options::value<T>(option)->default_value(*option),
       help.c_str());
+  flags_.emplace_back(option, "--" + name);
 }
 
 }  // namespace colmap_gcn

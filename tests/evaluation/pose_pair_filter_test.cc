@@ -127,9 +127,15 @@ TEST(PosePairFilter, FisheyeCamerasAreNeverSkipped) {
 
 TEST(PosePairFilter, RejectsBadOptionsAndMissingCameras) {
   PosePairFilterOptions options;
-  EXPECT_TRUE(options.Check());
+  EXPECT_NO_THROW(options.Check());
   options.max_viewpoint_change_deg = -1;
-  EXPECT_FALSE(options.Check());
+  try {
+    options.Check();
+    ADD_FAILURE() << "-1 degrees accepted";
+  } catch (const Error& error) {
+    EXPECT_STREQ(error.what(),
+                 "max_viewpoint_change_deg must be in [0, 180] (got -1)");
+  }
   EXPECT_THROW(SelectPosePairs(MakeRing(3), options), Error);
   options.max_viewpoint_change_deg = 70;
   Reconstruction ring = MakeRing(3);

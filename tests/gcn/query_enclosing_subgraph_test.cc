@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "util/error.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 namespace {
@@ -119,7 +120,7 @@ TEST(QuerySubgraph, RejectsTooSmallGraphAndBadOptions) {
   EXPECT_THROW(QesBuilder(knn, options), Error);
   options.u = 1;
   options.k1 = 0;
-  EXPECT_FALSE(options.Check());
+  EXPECT_THROW(options.Check(), OptionError);
   EXPECT_THROW(QesBuilder(knn, options), Error);
   EXPECT_EQ((QesOptions{100, 5, 10}.RequiredK()), 100);
 }

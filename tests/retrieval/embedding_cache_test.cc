@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 
 #include "retrieval/global_descriptors.h"
 #include "retrieval_test_utils.h"
+#include "util/error.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
@@ -114,6 +116,32 @@ TEST_F(EmbeddingCacheTest, SelfTrainedModelIsCachedAndRetrainedOnChange) {
             checksum);
   for (int i = 0; i < first.rows(); ++i) {
     EXPECT_NEAR(first.row(i).norm(), 1.0, 1e-5);
+  }
+}
+
+// The embedding runs in worker threads: a failure there (a codebook for
+// another descriptor size) must reach the caller as an Error for every
+// thread count, with no cache written.
+TEST_F(EmbeddingCacheTest, WorkerErrorsReachTheCaller) {
+  const int kWords = 2;
+  const int kDim = 64;
+  PcaWhitening pca;
+  pca.mean = Eigen::RowVectorXf::Zero(kWords * kDim);
+  pca.projection = FloatMatrix::Identity(3, kWords * kDim);
+  pca.eigenvalues = Eigen::VectorXf::Ones(3);
+  const VladEmbedding wrong(FloatMatrix::Ones(kWords, kDim), pca);
+  const std::string cache = JoinPaths(dir_.Path(), "wrong.cache");
+  for (int num_threads : {1, 2, 4}) {
+    std::vector<image_t> ids;
+    try {
+      ComputeDatabaseEmbeddings(
+          Database(path_), wrong, &ids, cache, num_threads);
+      FAIL() << "no error with " << num_threads << " threads";
+    } catch (const Error& error) {
+      EXPECT_EQ(std::string(error.what()),
+                "descriptors have 128 columns, the VLAD codebook 64");
+    }
+    EXPECT_FALSE(ExistsFile(cache));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "util/error.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 namespace {
@@ -185,7 +186,7 @@ TEST(ExactKnn, RejectsNonFiniteInputAndBadOptions) {
   EXPECT_THROW(ComputeExactKnn(EmbeddingMatrix::Ones(3, 2), options), Error);
   options = KnnOptions();
   options.method = "annoy";
-  EXPECT_FALSE(options.Check());
+  EXPECT_THROW(options.Check(), OptionError);
 }
 
 TEST(ApproximateKnn, FindsNearNeighboursWhenAvailable) {

@@ -10,6 +10,7 @@
 #include "training/model_evaluation.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 namespace {
@@ -324,7 +325,7 @@ TEST(ModelEvaluation, SensitivityVariesOneParameterAtATime) {
   // Two neighbours per image cannot recall what ten do.
   EXPECT_LE(points[0].recall, points[1].recall + 1e-12);
   options.thresholds = {1.0};
-  EXPECT_FALSE(options.Check());
+  EXPECT_THROW(options.Check(), OptionError);
 
   TemporaryDirectory dir("sensitivity_test");
   WriteGcnSensitivity(points, "test", dir.Path());
