@@ -22,8 +22,6 @@
 namespace colmap_gcn {
 namespace {
 
-namespace fs = std::filesystem;
-
 std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometriesById(
     const Database& database) {
   std::unordered_map<image_pair_t, TwoViewGeometryInfo> by_id;
