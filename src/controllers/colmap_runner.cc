@@ -225,7 +225,9 @@ std::string ColmapRunner::Run(const std::string& command,
   if (log.is_open()) {
     log << output << "[exit " << status << "]\n";
   }
-  if (status != 0 && PendingInterrupt() != 0) {
+  // Also after a child that ended normally: the signal asked this run to
+  // stop, and the next step must not start.
+  if (PendingInterrupt() != 0) {
     ThrowError("interrupted (signal ",
                PendingInterrupt(),
                ") while colmap ",

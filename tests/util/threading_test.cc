@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -78,10 +79,25 @@ TEST(ParallelFor, RethrowsTheLowestFailingIndexInTheCaller) {
       } catch (const Error& error) {
         EXPECT_EQ(std::string(error.what()), "index 37 failed") << num_threads;
       }
-      // No new index starts once one failed (a few were already running).
-      EXPECT_LT(started.load(), 200) << num_threads;
     }
   }
+}
+
+TEST(ParallelFor, StopsHandingOutIndicesAfterAFailure) {
+  // Index 0 fails at once while every other index takes 20 ms: reaching all
+  // 200 would need the failing worker to stall for over a second.
+  std::atomic<int> started(0);
+  EXPECT_THROW(
+      ParallelFor(0,
+                  200,
+                  4,
+                  [&](int i) {
+                    ++started;
+                    if (i == 0) ThrowError("index 0 failed");
+                    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                  }),
+      Error);
+  EXPECT_LT(started.load(), 200);
 }
 
 TEST(ParallelFor, PassesNonErrorExceptionsUnchanged) {
