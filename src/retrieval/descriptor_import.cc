@@ -65,6 +65,8 @@ class Hdf5Handle {
 };
 
 const char kHdf5DatasetName[] = "global_descriptor";
+// Global descriptors have at most a few thousand dimensions (NetVLAD 4096).
+constexpr hsize_t kMaxHdf5DescriptorDim = 1 << 20;
 
 herr_t CollectDescriptorPaths(hid_t,
                               const char* name,
@@ -131,6 +133,16 @@ ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
       ThrowError(path, ": ", dataset_path, " must have shape (D,) or (1, D)");
     }
     const hsize_t dim = rank == 1 ? dims[0] : dims[1];
+    // The shape comes from the file: bound it before allocating a row.
+    if (dim > kMaxHdf5DescriptorDim) {
+      ThrowError(path,
+                 ": ",
+                 dataset_path,
+                 " has ",
+                 dim,
+                 " dimensions, more than ",
+                 kMaxHdf5DescriptorDim);
+    }
     std::vector<float> row(dim);
     // HDF5 converts float16 (and float64) to native float on read.
     if (dim == 0 || H5Dread(dataset.Id(),
@@ -221,6 +233,18 @@ std::string NpyHeaderValue(const std::string& header,
   return StringTrim(header.substr(begin, end - begin));
 }
 
+// One entry of the shape tuple: a decimal count (no sign, no overflow).
+size_t ParseNpyDimension(const std::string& field,
+                         const std::string& shape,
+                         const std::string& path) {
+  const std::string digits = StringTrim(field);
+  if (digits.empty() || digits.size() > 18 ||
+      digits.find_first_not_of("0123456789") != std::string::npos) {
+    ThrowError(path, ": expected a 2-D array N x D, shape is ", shape);
+  }
+  return std::stoull(digits);
+}
+
 }  // namespace
 
 ImportedDescriptors ReadNpyGlobalDescriptors(const std::string& path) {
@@ -278,10 +302,17 @@ ImportedDescriptors ReadNpyGlobalDescriptors(const std::string& path) {
       parts.size() != 2 || StringTrim(parts[1]).empty()) {
     ThrowError(path, ": expected a 2-D array N x D, shape is ", shape);
   }
-  const size_t num_rows = std::stoull(StringTrim(parts[0]));
-  const size_t dim = std::stoull(StringTrim(parts[1]));
+  const size_t num_rows = ParseNpyDimension(parts[0], shape, path);
+  const size_t dim = ParseNpyDimension(parts[1], shape, path);
+  if (dim == 0) {
+    ThrowError(path, ": descriptors have no dimensions, shape is ", shape);
+  }
+  // Compared by division so that a huge shape cannot overflow the product.
   const size_t data_start = header_start + header_length;
-  if (contents.size() != data_start + num_rows * dim * element_size) {
+  const size_t data_size = contents.size() - data_start;
+  const size_t num_elements = data_size / element_size;
+  if (data_size % element_size != 0 || num_elements % dim != 0 ||
+      num_elements / dim != num_rows) {
     ThrowError(path, ": data size does not match shape ", shape);
   }
   ImportedDescriptors imported;
