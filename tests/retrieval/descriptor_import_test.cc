@@ -229,6 +229,71 @@ TEST(NpyImport, RejectsWhatItCannotRead) {
   EXPECT_THROW(ReadGlobalDescriptors(no_names), Error);
 }
 
+// Shapes the fuzzer found: a non-numeric dimension (std::stoull threw
+// std::invalid_argument) and one whose N * D * 8 overflows to the data size
+// (2^61 + 1 rows of 1 value: the check passed, then 2^61 rows were read).
+TEST(NpyImport, CorruptShapesAreErrorsNamingTheFile) {
+  const TemporaryDirectory dir;
+  const double f64[3] = {1, 2, 3};
+  const std::string path = JoinPaths(dir.Path(), "d.npy");
+  WriteFileAtomically(path + ".txt", "a\nb\nc\n");
+  for (const char* shape : {"(\xbf, 1)",
+                            "(-1, 3)",
+                            "(3, 1e2)",
+                            "(99999999999999999999999, 1)",
+                            "(2305843009213693953, 1)",
+                            "(3, 0)"}) {
+    WriteFileAtomically(path, NpyFile("<f8", shape, f64, sizeof(f64)));
+    try {
+      ReadGlobalDescriptors(path);
+      ADD_FAILURE() << "no error for shape " << shape;
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos)
+          << error.what();
+    }
+  }
+  WriteFileAtomically(path, NpyFile("<f8", "(3, 1)", f64, sizeof(f64)));
+  EXPECT_EQ(ReadGlobalDescriptors(path).vectors.rows(), 3);
+}
+
+// A dataspace of 2^40 values (a few bytes in the file, since the data is
+// never written) was allocated before reading.
+TEST(Hdf5Import, HugeDescriptorShapeIsAnError) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "huge.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "a.jpg", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {hsize_t(1) << 40};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t props = H5Pcreate(H5P_DATASET_CREATE);
+  const hsize_t chunk[1] = {1024};
+  H5Pset_chunk(props, 1, chunk);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   H5T_IEEE_F32LE,
+                                   space,
+                                   H5P_DEFAULT,
+                                   props,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  H5Dclose(dataset);
+  H5Pclose(props);
+  H5Sclose(space);
+  H5Gclose(group);
+  H5Fclose(file);
+  try {
+    ReadGlobalDescriptors(path);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("1099511627776 dimensions"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(TextImport, ReadsNameAndValues) {
   const TemporaryDirectory dir;
   const std::string path = JoinPaths(dir.Path(), "d.txt");
