@@ -124,6 +124,17 @@ ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
     if (H5Tget_class(type.Id()) != H5T_FLOAT) {
       ThrowError(path, ": ", dataset_path, " is not floating point");
     }
+    // HDF5 allocates and clears a conversion buffer of the file's element
+    // size, which a corrupt type can make gigabytes per value.
+    const size_t type_size = H5Tget_size(type.Id());
+    if (type_size != 2 && type_size != 4 && type_size != 8) {
+      ThrowError(path,
+                 ": ",
+                 dataset_path,
+                 " has ",
+                 type_size,
+                 "-byte floats (float16/32/64 only)");
+    }
     const Hdf5Handle space(H5Dget_space(dataset.Id()), H5Sclose);
     const int rank = H5Sget_simple_extent_ndims(space.Id());
     hsize_t dims[2] = {0, 0};

@@ -294,6 +294,43 @@ TEST(Hdf5Import, HugeDescriptorShapeIsAnError) {
   }
 }
 
+// Found by fuzzing: a float type of 2^30 + 2 bytes (3 values) made H5Dread
+// allocate and clear gigabytes; the fuzzer timed out.
+TEST(Hdf5Import, HugeFloatTypeIsAnError) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "wide.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "a.jpg", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t type = H5Tcopy(H5T_IEEE_F64LE);
+  ASSERT_GE(H5Tset_size(type, (size_t(1) << 30) + 2), 0);
+  const hsize_t dims[1] = {3};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   type,
+                                   space,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  H5Dclose(dataset);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Gclose(group);
+  H5Fclose(file);
+  try {
+    ReadGlobalDescriptors(path);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("1073741826-byte floats"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(TextImport, ReadsNameAndValues) {
   const TemporaryDirectory dir;
   const std::string path = JoinPaths(dir.Path(), "d.txt");
