@@ -81,6 +81,45 @@ herr_t CollectDescriptorPaths(hid_t,
   return 0;
 }
 
+// libhdf5 1.10 trusts the storage description of a dataset: a compact
+// dataset smaller than its shape makes H5Dread copy from a null pointer, a
+// huge chunk makes it allocate and clear the chunk. Checked before reading.
+void CheckHdf5Layout(hid_t dataset,
+                     hsize_t data_bytes,
+                     const std::string& path,
+                     const std::string& dataset_path) {
+  const Hdf5Handle properties(H5Dget_create_plist(dataset), H5Pclose);
+  const H5D_layout_t layout = H5Pget_layout(properties.Id());
+  if (layout == H5D_COMPACT) {
+    if (H5Dget_storage_size(dataset) != data_bytes) {
+      ThrowError(path,
+                 ": ",
+                 dataset_path,
+                 " is corrupt (compact storage of ",
+                 H5Dget_storage_size(dataset),
+                 " bytes for ",
+                 data_bytes,
+                 ")");
+    }
+  } else if (layout == H5D_CHUNKED) {
+    hsize_t chunk[H5S_MAX_RANK];
+    const int rank = H5Pget_chunk(properties.Id(), H5S_MAX_RANK, chunk);
+    bool valid = rank >= 1;
+    hsize_t elements = 1;
+    for (int i = 0; valid && i < rank; ++i) {
+      // Bounded factor by factor, so the product cannot overflow.
+      valid = chunk[i] > 0 && chunk[i] <= kMaxHdf5DescriptorDim &&
+              elements * chunk[i] <= kMaxHdf5DescriptorDim;
+      elements *= chunk[i];
+    }
+    if (!valid) {
+      ThrowError(path, ": ", dataset_path, " has corrupt or huge chunks");
+    }
+  } else if (layout != H5D_CONTIGUOUS) {
+    ThrowError(path, ": ", dataset_path, " has an unsupported storage layout");
+  }
+}
+
 }  // namespace
 
 ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
@@ -154,6 +193,7 @@ ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
                  " dimensions, more than ",
                  kMaxHdf5DescriptorDim);
     }
+    CheckHdf5Layout(dataset.Id(), dim * type_size, path, dataset_path);
     std::vector<float> row(dim);
     // HDF5 converts float16 (and float64) to native float on read.
     if (dim == 0 || H5Dread(dataset.Id(),

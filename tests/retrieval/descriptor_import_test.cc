@@ -331,6 +331,56 @@ TEST(Hdf5Import, HugeFloatTypeIsAnError) {
   }
 }
 
+// Found by fuzzing: a compact dataset whose stored data size says 0 bytes
+// for its 3 floats made H5Dread copy from a null pointer (SEGV inside
+// libhdf5). The file is a valid compact dataset with that one field zeroed.
+TEST(Hdf5Import, CompactDatasetSmallerThanItsShapeIsAnError) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "compact.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "a.jpg", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {3};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t props = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_layout(props, H5D_COMPACT);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   H5T_IEEE_F32LE,
+                                   space,
+                                   H5P_DEFAULT,
+                                   props,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  const float values[3] = {1.5f, -2.25f, 3.125f};
+  H5Dwrite(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+  H5Dclose(dataset);
+  H5Pclose(props);
+  H5Sclose(space);
+  H5Gclose(group);
+  H5Fclose(file);
+  EXPECT_EQ(ReadGlobalDescriptors(path).vectors(0, 2), 3.125f);
+
+  // Layout message: version 3, class 0 (compact), u16 size 12, the data.
+  std::string bytes = ReadTextFile(path);
+  std::string message("\x03\x00\x0c\x00", 4);
+  message.append(reinterpret_cast<const char*>(values), sizeof(values));
+  const size_t at = bytes.find(message);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 2] = 0;
+  WriteFileAtomically(path, bytes);
+  try {
+    ReadGlobalDescriptors(path);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("compact storage of 0 bytes"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(TextImport, ReadsNameAndValues) {
   const TemporaryDirectory dir;
   const std::string path = JoinPaths(dir.Path(), "d.txt");
