@@ -1,7 +1,9 @@
 #include "evaluation/bundler.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -15,6 +17,13 @@ namespace {
 
 // Bundler's camera frame to COLMAP's: flip y and z.
 const Eigen::Matrix3d kFlipYZ = Eigen::Vector3d(1, -1, -1).asDiagonal();
+
+std::string FormatNumber(double value) {
+  std::ostringstream stream;
+  stream.precision(17);
+  stream << value;
+  return stream.str();
+}
 
 // Reads whitespace-separated numbers line by line, for error messages with
 // line numbers.
@@ -61,13 +70,24 @@ class NumberReader {
     for (const std::string& field : fields) {
       char* end = nullptr;
       const double value = std::strtod(field.c_str(), &end);
-      if (end == field.c_str() || *end != '\0') {
+      // The whole field, so that an embedded NUL cannot end it early.
+      if (end == field.c_str() || end != field.c_str() + field.size()) {
         ThrowError(
             path_, ":", line_number_, ": bad number \"", field, "\" in ", what);
       }
       values.push_back(value);
     }
     return values;
+  }
+
+  // A count or index stored as a number: an integer in [0, max_value], checked
+  // before any conversion (casting a huge or NaN double is undefined).
+  int Integer(double value, double max_value, const std::string& what) const {
+    if (!(value >= 0 && value <= max_value) || value != std::floor(value)) {
+      Fail(what + " " + FormatNumber(value) + " is not an integer in [0, " +
+           FormatNumber(max_value) + "]");
+    }
+    return static_cast<int>(value);
   }
 
   [[noreturn]] void Fail(const std::string& what) const {
@@ -88,10 +108,14 @@ BundlerFile ReadBundlerFile(const std::string& path) {
   // v0.3 is the only version 1DSfM uses.
   NumberReader reader(path);
   const std::vector<double> counts = reader.Numbers(2, "the counts");
-  if (counts[0] < 0 || counts[1] < 0) reader.Fail("negative counts");
+  const double kMaxCount = std::numeric_limits<int>::max();
+  const int num_cameras = reader.Integer(counts[0], kMaxCount, "camera count");
+  const int num_points = reader.Integer(counts[1], kMaxCount, "point count");
   BundlerFile bundle;
-  bundle.cameras.resize(static_cast<size_t>(counts[0]));
-  for (BundlerCamera& camera : bundle.cameras) {
+  // Grown while parsing, so a corrupt count fails at the end of the file
+  // instead of allocating for it up front.
+  for (int i = 0; i < num_cameras; ++i) {
+    BundlerCamera& camera = bundle.cameras.emplace_back();
     const auto intrinsics = reader.Numbers(3, "camera f k1 k2");
     camera.focal_length = intrinsics[0];
     camera.k1 = intrinsics[1];
@@ -103,30 +127,30 @@ BundlerFile ReadBundlerFile(const std::string& path) {
     const auto t = reader.Numbers(3, "a camera translation");
     camera.translation << t[0], t[1], t[2];
   }
-  bundle.points.resize(static_cast<size_t>(counts[1]));
-  for (BundlerPoint& point : bundle.points) {
+  for (int i = 0; i < num_points; ++i) {
+    BundlerPoint& point = bundle.points.emplace_back();
     const auto xyz = reader.Numbers(3, "a point position");
     point.xyz << xyz[0], xyz[1], xyz[2];
     const auto color = reader.Numbers(3, "a point colour");
-    point.color << static_cast<int>(color[0]), static_cast<int>(color[1]),
-        static_cast<int>(color[2]);
+    for (int k = 0; k < 3; ++k) {
+      point.color(k) = reader.Integer(color[k], 255, "colour");
+    }
     const auto fields = reader.Line("a point view list");
     const auto values = reader.Parse(fields, "a point view list");
-    if (values.empty() || values[0] < 0 ||
-        values.size() != 1 + 4 * static_cast<size_t>(values[0])) {
+    if (values.empty() || reader.Integer(values[0], kMaxCount, "view count") !=
+                              static_cast<double>(values.size() - 1) / 4) {
       reader.Fail("view list length does not match its count");
     }
-    for (size_t v = 0; v < static_cast<size_t>(values[0]); ++v) {
+    const size_t num_views = (values.size() - 1) / 4;
+    for (size_t v = 0; v < num_views; ++v) {
       BundlerView view;
-      view.camera_idx = static_cast<int>(values[1 + 4 * v]);
-      view.key_idx = static_cast<int>(values[2 + 4 * v]);
+      if (num_cameras == 0) reader.Fail("view of a camera, but no cameras");
+      view.camera_idx = reader.Integer(
+          values[1 + 4 * v], num_cameras - 1, "view camera index");
+      view.key_idx =
+          reader.Integer(values[2 + 4 * v], kMaxCount, "view key index");
       view.x = values[3 + 4 * v];
       view.y = values[4 + 4 * v];
-      if (view.camera_idx < 0 ||
-          view.camera_idx >= static_cast<int>(bundle.cameras.size())) {
-        reader.Fail("view of camera " + std::to_string(view.camera_idx) +
-                    " out of range");
-      }
       point.views.push_back(view);
     }
   }

@@ -91,6 +91,14 @@ class Reader {
   void ExpectEnd() {
     if (pos_ != end_) Fail();
   }
+  // Fails unless exactly `count` floats are left, before anything is
+  // allocated for them (sizes come from the file).
+  void ExpectFloatsLeft(uint64_t count) {
+    if (count != (end_ - pos_) / sizeof(float) ||
+        (end_ - pos_) % sizeof(float) != 0) {
+      Fail();
+    }
+  }
 
  private:
   void Need(size_t size) {
@@ -292,6 +300,7 @@ GcnModel DeserializeGcnModel(const std::string& bytes,
   }
   {
     Reader r = section("NORM");
+    r.ExpectFloatsLeft(2 * static_cast<uint64_t>(model.shape.input_dim));
     model.input_shift.resize(model.shape.input_dim);
     model.input_scale.resize(model.shape.input_dim);
     r.GetFloats(model.input_shift.data(), model.shape.input_dim);
@@ -300,16 +309,18 @@ GcnModel DeserializeGcnModel(const std::string& bytes,
   }
   {
     Reader r = section("WGTS");
-    model.params = GcnParameters<float>(model.shape);
     const uint64_t count = r.Get<uint64_t>();
-    if (count != model.params.Size()) {
+    const size_t needed = GcnParameterLayout(model.shape).size;
+    if (count != needed) {
       ThrowError("GCN model file ",
                  source,
                  " has ",
                  count,
                  " weights but its network shape needs ",
-                 model.params.Size());
+                 needed);
     }
+    r.ExpectFloatsLeft(count);
+    model.params = GcnParameters<float>(model.shape);
     r.GetFloats(model.params.Values().data(), count);
     r.ExpectEnd();
   }

@@ -65,6 +65,8 @@ class Hdf5Handle {
 };
 
 const char kHdf5DatasetName[] = "global_descriptor";
+// Global descriptors have at most a few thousand dimensions (NetVLAD 4096).
+constexpr hsize_t kMaxHdf5DescriptorDim = 1 << 20;
 
 herr_t CollectDescriptorPaths(hid_t,
                               const char* name,
@@ -77,6 +79,45 @@ herr_t CollectDescriptorPaths(hid_t,
     static_cast<std::vector<std::string>*>(data)->push_back(path);
   }
   return 0;
+}
+
+// libhdf5 1.10 trusts the storage description of a dataset: a compact
+// dataset smaller than its shape makes H5Dread copy from a null pointer, a
+// huge chunk makes it allocate and clear the chunk. Checked before reading.
+void CheckHdf5Layout(hid_t dataset,
+                     hsize_t data_bytes,
+                     const std::string& path,
+                     const std::string& dataset_path) {
+  const Hdf5Handle properties(H5Dget_create_plist(dataset), H5Pclose);
+  const H5D_layout_t layout = H5Pget_layout(properties.Id());
+  if (layout == H5D_COMPACT) {
+    if (H5Dget_storage_size(dataset) != data_bytes) {
+      ThrowError(path,
+                 ": ",
+                 dataset_path,
+                 " is corrupt (compact storage of ",
+                 H5Dget_storage_size(dataset),
+                 " bytes for ",
+                 data_bytes,
+                 ")");
+    }
+  } else if (layout == H5D_CHUNKED) {
+    hsize_t chunk[H5S_MAX_RANK];
+    const int rank = H5Pget_chunk(properties.Id(), H5S_MAX_RANK, chunk);
+    bool valid = rank >= 1;
+    hsize_t elements = 1;
+    for (int i = 0; valid && i < rank; ++i) {
+      // Bounded factor by factor, so the product cannot overflow.
+      valid = chunk[i] > 0 && chunk[i] <= kMaxHdf5DescriptorDim &&
+              elements * chunk[i] <= kMaxHdf5DescriptorDim;
+      elements *= chunk[i];
+    }
+    if (!valid) {
+      ThrowError(path, ": ", dataset_path, " has corrupt or huge chunks");
+    }
+  } else if (layout != H5D_CONTIGUOUS) {
+    ThrowError(path, ": ", dataset_path, " has an unsupported storage layout");
+  }
 }
 
 }  // namespace
@@ -122,6 +163,17 @@ ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
     if (H5Tget_class(type.Id()) != H5T_FLOAT) {
       ThrowError(path, ": ", dataset_path, " is not floating point");
     }
+    // HDF5 allocates and clears a conversion buffer of the file's element
+    // size, which a corrupt type can make gigabytes per value.
+    const size_t type_size = H5Tget_size(type.Id());
+    if (type_size != 2 && type_size != 4 && type_size != 8) {
+      ThrowError(path,
+                 ": ",
+                 dataset_path,
+                 " has ",
+                 type_size,
+                 "-byte floats (float16/32/64 only)");
+    }
     const Hdf5Handle space(H5Dget_space(dataset.Id()), H5Sclose);
     const int rank = H5Sget_simple_extent_ndims(space.Id());
     hsize_t dims[2] = {0, 0};
@@ -131,6 +183,17 @@ ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
       ThrowError(path, ": ", dataset_path, " must have shape (D,) or (1, D)");
     }
     const hsize_t dim = rank == 1 ? dims[0] : dims[1];
+    // The shape comes from the file: bound it before allocating a row.
+    if (dim > kMaxHdf5DescriptorDim) {
+      ThrowError(path,
+                 ": ",
+                 dataset_path,
+                 " has ",
+                 dim,
+                 " dimensions, more than ",
+                 kMaxHdf5DescriptorDim);
+    }
+    CheckHdf5Layout(dataset.Id(), dim * type_size, path, dataset_path);
     std::vector<float> row(dim);
     // HDF5 converts float16 (and float64) to native float on read.
     if (dim == 0 || H5Dread(dataset.Id(),
@@ -221,6 +284,18 @@ std::string NpyHeaderValue(const std::string& header,
   return StringTrim(header.substr(begin, end - begin));
 }
 
+// One entry of the shape tuple: a decimal count (no sign, no overflow).
+size_t ParseNpyDimension(const std::string& field,
+                         const std::string& shape,
+                         const std::string& path) {
+  const std::string digits = StringTrim(field);
+  if (digits.empty() || digits.size() > 18 ||
+      digits.find_first_not_of("0123456789") != std::string::npos) {
+    ThrowError(path, ": expected a 2-D array N x D, shape is ", shape);
+  }
+  return std::stoull(digits);
+}
+
 }  // namespace
 
 ImportedDescriptors ReadNpyGlobalDescriptors(const std::string& path) {
@@ -278,10 +353,17 @@ ImportedDescriptors ReadNpyGlobalDescriptors(const std::string& path) {
       parts.size() != 2 || StringTrim(parts[1]).empty()) {
     ThrowError(path, ": expected a 2-D array N x D, shape is ", shape);
   }
-  const size_t num_rows = std::stoull(StringTrim(parts[0]));
-  const size_t dim = std::stoull(StringTrim(parts[1]));
+  const size_t num_rows = ParseNpyDimension(parts[0], shape, path);
+  const size_t dim = ParseNpyDimension(parts[1], shape, path);
+  if (dim == 0) {
+    ThrowError(path, ": descriptors have no dimensions, shape is ", shape);
+  }
+  // Compared by division so that a huge shape cannot overflow the product.
   const size_t data_start = header_start + header_length;
-  if (contents.size() != data_start + num_rows * dim * element_size) {
+  const size_t data_size = contents.size() - data_start;
+  const size_t num_elements = data_size / element_size;
+  if (data_size % element_size != 0 || num_elements % dim != 0 ||
+      num_elements / dim != num_rows) {
     ThrowError(path, ": data size does not match shape ", shape);
   }
   ImportedDescriptors imported;

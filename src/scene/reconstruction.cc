@@ -157,7 +157,9 @@ class TextReader {
     errno = 0;
     char* end = nullptr;
     const double value = std::strtod(field.c_str(), &end);
-    if (field.empty() || *end != '\0' || errno == ERANGE) {
+    // The whole field, so that an embedded NUL cannot end it early.
+    if (field.empty() || end != field.c_str() + field.size() ||
+        errno == ERANGE) {
       Fail("invalid number '" + field + "'");
     }
     return value;
@@ -169,8 +171,8 @@ class TextReader {
     errno = 0;
     char* end = nullptr;
     const long long value = std::strtoll(field.c_str(), &end, 10);
-    if (field.empty() || *end != '\0' || errno == ERANGE || value < min_value ||
-        value > max_value) {
+    if (field.empty() || end != field.c_str() + field.size() ||
+        errno == ERANGE || value < min_value || value > max_value) {
       Fail("invalid integer '" + field + "'");
     }
     return value;
@@ -385,10 +387,13 @@ void ReadImagesText(const std::string& path,
         static_cast<camera_t>(reader.ParseInt(fields[8], 0, kMaxUint32));
     // The name is the rest of the line (COLMAP itself stops at the first
     // space; taking the rest is a superset).
+    // Fields() splits on all of isspace's characters, so skipping the nine
+    // fields with the same set always lands inside the line.
+    const char* kSpace = " \t\n\v\f\r";
     size_t name_begin = 0;
     for (int k = 0; k < 9; ++k) {
-      name_begin = line.find_first_not_of(" \t", name_begin);
-      name_begin = line.find_first_of(" \t", name_begin);
+      name_begin = line.find_first_not_of(kSpace, name_begin);
+      name_begin = line.find_first_of(kSpace, name_begin);
     }
     image.name = StringTrim(line.substr(name_begin));
     if (images->count(image.image_id) > 0) {

@@ -118,5 +118,43 @@ TEST(Bundler, MalformedFilesAreErrorsNamingTheFile) {
   EXPECT_THROW(ReadBundlerFile(JoinPaths(dir.Path(), "missing.out")), Error);
 }
 
+// Inputs the fuzzer found or that follow from them: counts and indices were
+// cast from double unchecked (a count of 9e12 allocated 1.3 TB; NaN or 1e300
+// is undefined behaviour), and a field with a NUL byte parsed as its prefix.
+TEST(Bundler, CorruptCountsIndicesAndColoursAreErrorsNamingTheFile) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "bad.out");
+  const std::string camera = "500 0 0\n1 0 0\n0 1 0\n0 0 1\n0 0 0\n";
+  const std::string cases[] = {
+      "9223372036854 0\n",
+      "nan 0\n",
+      "1.5 0\n",
+      "0 -1\n",
+      "0 1\n0 0 0\n1e300 0 0\n0\n",
+      "0 1\n0 0 0\n256 0 0\n0\n",
+      "1 1\n" + camera + "0 0 0\n1 1 1\n1 1e300 0 1 1\n",
+      "1 1\n" + camera + "0 0 0\n1 1 1\n1 0 -5 1 1\n",
+      "1 1\n" + camera + "0 0 0\n1 1 1\n1e300\n",
+      "1 1\n" + camera + "0 0 0\n1 1 1\n1.25 0 0 1 1\n",
+      std::string("0 0\0junk\n", 9),
+  };
+  for (const std::string& contents : cases) {
+    WriteFileAtomically(path, contents);
+    try {
+      ReadBundlerFile(path);
+      ADD_FAILURE() << "no error for \"" << contents << "\"";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("bad.out"), std::string::npos)
+          << error.what();
+    }
+  }
+  WriteFileAtomically(path,
+                      "1 1\n" + camera + "0 0 0\n255 0 7\n1 0 3 1.5 -2\n");
+  const BundlerFile bundle = ReadBundlerFile(path);
+  ASSERT_EQ(bundle.points.size(), 1u);
+  EXPECT_EQ(bundle.points[0].color(0), 255);
+  EXPECT_EQ(bundle.points[0].views[0].key_idx, 3);
+}
+
 }  // namespace
 }  // namespace colmap_gcn

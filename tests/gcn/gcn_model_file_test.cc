@@ -122,5 +122,77 @@ TEST(GcnModelFile, TruncatedForeignCorruptAndMismatched) {
   }
 }
 
+template <typename T>
+void Append(std::string* bytes, T value) {
+  bytes->append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+void AppendSection(std::string* payload,
+                   const char* tag,
+                   const std::string& body) {
+  payload->append(tag, 4);
+  Append<uint64_t>(payload, body.size());
+  payload->append(body);
+}
+
+// A header and checksum around the payload, so that only the sections are
+// malformed.
+std::string ModelFileAround(const std::string& payload) {
+  std::string bytes = "CGCNMODL";
+  Append<uint32_t>(&bytes, kGcnModelFormatVersion);
+  Append<uint32_t>(&bytes, 0);
+  Append<uint64_t>(&bytes, payload.size());
+  bytes += payload;
+  Append<uint64_t>(&bytes, Fnv1a64(payload.data(), payload.size()));
+  return bytes;
+}
+
+// A shape the reader accepts (input 1, two GCN layers and FC of 65536) needs
+// 8.6e9 weights; the reader allocated them (34 GB) before checking that the
+// WGTS section holds them, so a 200-byte file was std::bad_alloc or an
+// out-of-memory kill instead of an Error.
+TEST(GcnModelFile, HugeShapeWithoutItsWeightsIsAnError) {
+  GcnShape shape;
+  shape.input_dim = 1;
+  shape.gcn_dims = {65536, 65536};
+  shape.fc_dim = 65536;
+  std::string nets;
+  for (int32_t value : {1, 2, 65536, 65536, 65536, 0}) Append(&nets, value);
+  std::string embd;
+  Append<uint64_t>(&embd, 0);
+  Append<int32_t>(&embd, 1);
+  Append<uint64_t>(&embd, 0);
+  std::string norm;
+  Append<float>(&norm, 0);
+  Append<float>(&norm, 1);
+  std::string wgts;
+  Append<uint64_t>(&wgts, GcnParameterLayout(shape).size);
+  std::string info(24, '\0');
+  std::string payload;
+  AppendSection(&payload, "NETS", nets);
+  AppendSection(&payload, "EMBD", embd);
+  AppendSection(&payload, "NORM", norm);
+  AppendSection(&payload, "WGTS", wgts);
+  AppendSection(&payload, "INFO", info);
+  EXPECT_EQ(ErrorOf(ModelFileAround(payload)),
+            "GCN model file model.bin: malformed WGTS section");
+
+  // The same for a NORM section shorter than the input dimension says.
+  std::string wide_nets;
+  for (int32_t value : {1 << 20, 1, 1, 1, 0}) Append(&wide_nets, value);
+  std::string wide_embd;
+  Append<uint64_t>(&wide_embd, 0);
+  Append<int32_t>(&wide_embd, 1 << 20);
+  Append<uint64_t>(&wide_embd, 0);
+  payload.clear();
+  AppendSection(&payload, "NETS", wide_nets);
+  AppendSection(&payload, "EMBD", wide_embd);
+  AppendSection(&payload, "NORM", norm);
+  AppendSection(&payload, "WGTS", wgts);
+  AppendSection(&payload, "INFO", info);
+  EXPECT_EQ(ErrorOf(ModelFileAround(payload)),
+            "GCN model file model.bin: malformed NORM section");
+}
+
 }  // namespace
 }  // namespace colmap_gcn

@@ -229,6 +229,158 @@ TEST(NpyImport, RejectsWhatItCannotRead) {
   EXPECT_THROW(ReadGlobalDescriptors(no_names), Error);
 }
 
+// Shapes the fuzzer found: a non-numeric dimension (std::stoull threw
+// std::invalid_argument) and one whose N * D * 8 overflows to the data size
+// (2^61 + 1 rows of 1 value: the check passed, then 2^61 rows were read).
+TEST(NpyImport, CorruptShapesAreErrorsNamingTheFile) {
+  const TemporaryDirectory dir;
+  const double f64[3] = {1, 2, 3};
+  const std::string path = JoinPaths(dir.Path(), "d.npy");
+  WriteFileAtomically(path + ".txt", "a\nb\nc\n");
+  for (const char* shape : {"(\xbf, 1)",
+                            "(-1, 3)",
+                            "(3, 1e2)",
+                            "(99999999999999999999999, 1)",
+                            "(2305843009213693953, 1)",
+                            "(3, 0)"}) {
+    WriteFileAtomically(path, NpyFile("<f8", shape, f64, sizeof(f64)));
+    try {
+      ReadGlobalDescriptors(path);
+      ADD_FAILURE() << "no error for shape " << shape;
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos)
+          << error.what();
+    }
+  }
+  WriteFileAtomically(path, NpyFile("<f8", "(3, 1)", f64, sizeof(f64)));
+  EXPECT_EQ(ReadGlobalDescriptors(path).vectors.rows(), 3);
+}
+
+// A dataspace of 2^40 values (a few bytes in the file, since the data is
+// never written) was allocated before reading.
+TEST(Hdf5Import, HugeDescriptorShapeIsAnError) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "huge.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "a.jpg", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {hsize_t(1) << 40};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t props = H5Pcreate(H5P_DATASET_CREATE);
+  const hsize_t chunk[1] = {1024};
+  H5Pset_chunk(props, 1, chunk);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   H5T_IEEE_F32LE,
+                                   space,
+                                   H5P_DEFAULT,
+                                   props,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  H5Dclose(dataset);
+  H5Pclose(props);
+  H5Sclose(space);
+  H5Gclose(group);
+  H5Fclose(file);
+  try {
+    ReadGlobalDescriptors(path);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("1099511627776 dimensions"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+// Found by fuzzing: a float type of 2^30 + 2 bytes (3 values) made H5Dread
+// allocate and clear gigabytes; the fuzzer timed out.
+TEST(Hdf5Import, HugeFloatTypeIsAnError) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "wide.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "a.jpg", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t type = H5Tcopy(H5T_IEEE_F64LE);
+  ASSERT_GE(H5Tset_size(type, (size_t(1) << 30) + 2), 0);
+  const hsize_t dims[1] = {3};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   type,
+                                   space,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  H5Dclose(dataset);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Gclose(group);
+  H5Fclose(file);
+  try {
+    ReadGlobalDescriptors(path);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("1073741826-byte floats"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+// Found by fuzzing: a compact dataset whose stored data size says 0 bytes
+// for its 3 floats made H5Dread copy from a null pointer (SEGV inside
+// libhdf5). The file is a valid compact dataset with that one field zeroed.
+TEST(Hdf5Import, CompactDatasetSmallerThanItsShapeIsAnError) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "compact.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "a.jpg", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {3};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t props = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_layout(props, H5D_COMPACT);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   H5T_IEEE_F32LE,
+                                   space,
+                                   H5P_DEFAULT,
+                                   props,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  const float values[3] = {1.5f, -2.25f, 3.125f};
+  H5Dwrite(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+  H5Dclose(dataset);
+  H5Pclose(props);
+  H5Sclose(space);
+  H5Gclose(group);
+  H5Fclose(file);
+  EXPECT_EQ(ReadGlobalDescriptors(path).vectors(0, 2), 3.125f);
+
+  // Layout message: version 3, class 0 (compact), u16 size 12, the data.
+  std::string bytes = ReadTextFile(path);
+  std::string message("\x03\x00\x0c\x00", 4);
+  message.append(reinterpret_cast<const char*>(values), sizeof(values));
+  const size_t at = bytes.find(message);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 2] = 0;
+  WriteFileAtomically(path, bytes);
+  try {
+    ReadGlobalDescriptors(path);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("compact storage of 0 bytes"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(TextImport, ReadsNameAndValues) {
   const TemporaryDirectory dir;
   const std::string path = JoinPaths(dir.Path(), "d.txt");

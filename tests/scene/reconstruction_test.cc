@@ -305,6 +305,31 @@ TEST(Reconstruction, MalformedTextIsErrorNamingFile) {
                     JoinPaths(empty.Path(), "cameras.bin"));
 }
 
+// Found by fuzzing: fields separated by a vertical tab (white space to the
+// field splitter, not to the name search) made the name search run past the
+// line end and std::string::substr throw std::out_of_range; a number with an
+// embedded NUL byte parsed as its prefix.
+TEST(Reconstruction, TextOddWhiteSpaceAndNulBytesAreHandled) {
+  TemporaryDirectory dir;
+  const std::string cameras = JoinPaths(dir.Path(), "cameras.txt");
+  const std::string images = JoinPaths(dir.Path(), "images.txt");
+  WriteFileAtomically(cameras, "1 PINHOLE 640 480 1 2 3 4\n");
+  Reconstruction model;
+  WriteFileAtomically(images,
+                      "3 0.95\v0 0 3 -1 0.5 2 1\va.jpg\n\n"
+                      "4 1 0 0 0 0 0 0 1\vb c.jpg\n\n");
+  model.ReadText(dir.Path());
+  ASSERT_EQ(model.images.size(), 2u);
+  EXPECT_EQ(model.images.at(3).name, "a.jpg");
+  EXPECT_EQ(model.images.at(4).name, "b c.jpg");
+  WriteFileAtomically(images,
+                      std::string("3 1 0 0 0 0 0 0 1 a.jpg\n1 2\0x -1\n", 33));
+  ExpectErrorNaming([&] { model.ReadText(dir.Path()); }, images + ":2");
+  WriteFileAtomically(cameras,
+                      std::string("1 PINHOLE 640 480\0 1 2 3 4\n", 27));
+  ExpectErrorNaming([&] { model.ReadText(dir.Path()); }, cameras + ":1");
+}
+
 TEST(Reconstruction, TruncatedBinaryIsErrorNamingFile) {
   TemporaryDirectory dir;
   MakeModel().WriteBinary(dir.Path());

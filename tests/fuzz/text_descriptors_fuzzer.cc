@@ -1,0 +1,19 @@
+// Fuzzes the text global-descriptor importer ("name v1 ... vD" lines).
+
+#include "fuzz_utils.h"
+#include "retrieval/descriptor_import.h"
+#include "util/error.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string path =
+      colmap_gcn::fuzz::WriteScratchFile("descriptors.txt", data, size);
+  try {
+    const colmap_gcn::ImportedDescriptors imported =
+        colmap_gcn::ReadTextGlobalDescriptors(path);
+    if (imported.names.size() != static_cast<size_t>(imported.vectors.rows()))
+      __builtin_trap();
+  } catch (const colmap_gcn::Error& error) {
+    colmap_gcn::fuzz::Rejected(error);
+  }
+  return 0;
+}
