@@ -1,7 +1,5 @@
 #include "controllers/vocab_tree_pairing.h"
 
-#include <sqlite3.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <map>
@@ -36,83 +34,6 @@ int AutoNumVisualWords(size_t num_descriptors) {
   while (words * 2 <= num_descriptors / 50 && words < 16384) words *= 2;
   return static_cast<int>(std::min(words, num_descriptors));
 }
-
-namespace {
-
-void Exec(sqlite3* db, const std::string& sql) {
-  char* message = nullptr;
-  if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &message) != SQLITE_OK) {
-    const std::string why = message != nullptr ? message : "unknown error";
-    sqlite3_free(message);
-    ThrowError("merging databases failed: ", why);
-  }
-}
-
-std::string SqlQuote(const std::string& str) {
-  std::string quoted = "'";
-  for (const char c : str) {
-    quoted += c;
-    if (c == '\'') quoted += '\'';
-  }
-  return quoted + "'";
-}
-
-// One database holding all images and descriptors of the inputs.
-void MergeDatabases(const std::vector<std::string>& database_paths,
-                    const std::string& merged_path) {
-  for (const std::string& path : database_paths) {
-    const Database database(path);  // validates
-    if (database.Schema() != DatabaseSchema::kColmap38) {
-      ThrowError("cannot merge ",
-                 path,
-                 ": only COLMAP 3.8 databases can be merged for "
-                 "vocab_tree_builder");
-    }
-  }
-  CopyDatabase(database_paths[0], merged_path);
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(
-          merged_path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) !=
-      SQLITE_OK) {
-    sqlite3_close(db);
-    ThrowError("cannot open ", merged_path);
-  }
-  try {
-    Exec(db, "PRAGMA journal_mode=DELETE;");
-    Exec(db,
-         "DELETE FROM matches; DELETE FROM two_view_geometries;"
-         "UPDATE images SET name = '0/' || name;");
-    for (size_t i = 1; i < database_paths.size(); ++i) {
-      Exec(db, "ATTACH DATABASE " + SqlQuote(database_paths[i]) + " AS src;");
-      Exec(db,
-           "BEGIN;"
-           "CREATE TEMP TABLE offsets AS SELECT"
-           " (SELECT IFNULL(MAX(camera_id), 0) FROM main.cameras) AS cam,"
-           " (SELECT IFNULL(MAX(image_id), 0) FROM main.images) AS img;"
-           "INSERT INTO main.cameras SELECT camera_id + (SELECT cam FROM"
-           " offsets), model, width, height, params, prior_focal_length"
-           " FROM src.cameras;"
-           "INSERT INTO main.images (image_id, name, camera_id) SELECT"
-           " image_id + (SELECT img FROM offsets), '" +
-               std::to_string(i) +
-               "/' || name, camera_id + (SELECT cam FROM offsets)"
-               " FROM src.images;"
-               "INSERT INTO main.keypoints SELECT image_id + (SELECT img FROM"
-               " offsets), rows, cols, data FROM src.keypoints;"
-               "INSERT INTO main.descriptors SELECT image_id + (SELECT img"
-               " FROM offsets), rows, cols, data FROM src.descriptors;"
-               "DROP TABLE offsets;"
-               "COMMIT;");
-      Exec(db, "DETACH DATABASE src;");
-    }
-  } catch (...) {
-    sqlite3_close(db);
-    throw;
-  }
-  sqlite3_close(db);
-}
-
-}  // namespace
 
 void BuildVocabTree(const ColmapRunner& colmap,
                     const std::vector<std::string>& database_paths,

@@ -4,7 +4,7 @@
 #include <unordered_set>
 
 #include "gcn/gcn_inference.h"
-#include "gcn/gcn_trainer.h"
+#include "gcn/query_enclosing_subgraph.h"
 #include "util/error.h"
 #include "util/option_check.h"
 #include "util/timer.h"

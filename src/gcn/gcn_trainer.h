@@ -150,12 +150,4 @@ GcnClassificationStats EvaluateGcn(const GcnModel& model,
                                    float threshold,
                                    int num_threads);
 
-// kNN graph for a QES over a collection of n images: k = min(RequiredK, n-1).
-KnnGraph ComputeKnnForQes(const EmbeddingMatrix& embeddings,
-                          const QesOptions& qes,
-                          int num_threads);
-
-// qes with k1, k2, u capped at n - 1.
-QesOptions CapQesOptions(const QesOptions& qes, int num_images);
-
 }  // namespace colmap_gcn

@@ -170,4 +170,23 @@ QesFeatures(const QuerySubgraph& subgraph, const EmbeddingMatrix& embeddings) {
   return x;
 }
 
+QesOptions CapQesOptions(const QesOptions& qes, int num_images) {
+  QesOptions capped = qes;
+  const int max_k = std::max(num_images - 1, 0);
+  capped.k1 = std::min(capped.k1, max_k);
+  capped.k2 = std::min(capped.k2, max_k);
+  capped.u = std::min(capped.u, max_k);
+  return capped;
+}
+
+KnnGraph ComputeKnnForQes(const EmbeddingMatrix& embeddings,
+                          const QesOptions& qes,
+                          int num_threads) {
+  KnnOptions knn_options;
+  knn_options.k = std::min(
+      qes.RequiredK(), std::max(static_cast<int>(embeddings.rows()) - 1, 1));
+  knn_options.num_threads = num_threads;
+  return ComputeExactKnn(embeddings, knn_options);
+}
+
 }  // namespace colmap_gcn

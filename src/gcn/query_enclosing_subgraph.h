@@ -91,6 +91,14 @@ QuerySubgraph BuildQuerySubgraph(const KnnGraph& knn,
                                  int query,
                                  const QesOptions& options);
 
+// kNN graph for a QES over a collection of n images: k = min(RequiredK, n-1).
+KnnGraph ComputeKnnForQes(const EmbeddingMatrix& embeddings,
+                          const QesOptions& qes,
+                          int num_threads);
+
+// qes with k1, k2, u capped at n - 1.
+QesOptions CapQesOptions(const QesOptions& qes, int num_images);
+
 // Node features of a QES, paper Eq. 2: row i = e(nodes[i]) - e(query).
 Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
 QesFeatures(const QuerySubgraph& subgraph, const EmbeddingMatrix& embeddings);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace colmap_gcn {
 
@@ -36,5 +37,11 @@ std::string CheckDatabaseIntegrity(const std::string& path);
 // Flushes path's contents to disk (fsync), so a rename that publishes it
 // survives a power loss; throws Error on failure.
 void SyncFile(const std::string& path);
+
+// One COLMAP 3.8 database at merged_path holding all cameras, images,
+// keypoints and descriptors of the inputs (matches dropped); image names get
+// the prefix "<input index>/" so they stay unique. Throws Error on failure.
+void MergeDatabases(const std::vector<std::string>& database_paths,
+                    const std::string& merged_path);
 
 }  // namespace colmap_gcn
