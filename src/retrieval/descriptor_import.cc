@@ -1,11 +1,16 @@
 #include "retrieval/descriptor_import.h"
 
+#include <fcntl.h>
 #include <hdf5.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <new>
 #include <set>
 #include <sstream>
 
@@ -63,6 +68,145 @@ class Hdf5Handle {
   hid_t id_;
   herr_t (*close_)(hid_t);
 };
+
+// libhdf5 1.10's metadata accumulator, which its stock file drivers turn
+// on, serves a read at the undefined address (all bits set, as a corrupt
+// group's local heap or B-tree address can be) by copying from its empty,
+// null buffer: a SEGV inside H5Lvisit. The public API cannot show such an
+// address before HDF5 follows it, so files are opened through this minimal
+// read-only POSIX driver instead: it leaves the accumulator off and refuses
+// reads outside the addressable range (HDF5 turns that into an error), and
+// otherwise reads like the default sec2 driver, zeros past the end included.
+struct CheckedHdf5File {
+  H5FD_t base;  // First member: HDF5 passes &base to the callbacks.
+  int fd;
+  dev_t device;
+  ino_t inode;
+  haddr_t eoa;
+  haddr_t eof;
+};
+
+// Largest offset pread takes, as in the sec2 driver.
+constexpr haddr_t kMaxHdf5FileAddress = (haddr_t(1) << 63) - 1;
+
+CheckedHdf5File* AsChecked(H5FD_t* file) {
+  return reinterpret_cast<CheckedHdf5File*>(file);
+}
+const CheckedHdf5File* AsChecked(const H5FD_t* file) {
+  return reinterpret_cast<const CheckedHdf5File*>(file);
+}
+
+H5FD_t* CheckedHdf5Open(const char* name, unsigned flags, hid_t, haddr_t) {
+  if ((flags & (H5F_ACC_RDWR | H5F_ACC_TRUNC | H5F_ACC_CREAT)) != 0) {
+    return nullptr;
+  }
+  const int fd = open(name, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return nullptr;
+  struct stat status;
+  CheckedHdf5File* file = nullptr;
+  if (fstat(fd, &status) != 0 ||
+      (file = new (std::nothrow) CheckedHdf5File()) == nullptr) {
+    close(fd);
+    return nullptr;
+  }
+  file->fd = fd;
+  file->device = status.st_dev;
+  file->inode = status.st_ino;
+  file->eof = static_cast<haddr_t>(status.st_size);
+  return &file->base;
+}
+
+herr_t CheckedHdf5Close(H5FD_t* base) {
+  CheckedHdf5File* file = AsChecked(base);
+  const int result = close(file->fd);
+  delete file;
+  return result == 0 ? 0 : -1;
+}
+
+int CheckedHdf5Compare(const H5FD_t* base1, const H5FD_t* base2) {
+  const CheckedHdf5File* file1 = AsChecked(base1);
+  const CheckedHdf5File* file2 = AsChecked(base2);
+  if (file1->device != file2->device) {
+    return file1->device < file2->device ? -1 : 1;
+  }
+  if (file1->inode != file2->inode) return file1->inode < file2->inode ? -1 : 1;
+  return 0;
+}
+
+herr_t CheckedHdf5Query(const H5FD_t*, unsigned long* flags) {
+  if (flags != nullptr) *flags = 0;
+  return 0;
+}
+
+haddr_t CheckedHdf5GetEoa(const H5FD_t* file, H5FD_mem_t) {
+  return AsChecked(file)->eoa;
+}
+
+herr_t CheckedHdf5SetEoa(H5FD_t* file, H5FD_mem_t, haddr_t address) {
+  if (address > kMaxHdf5FileAddress) return -1;
+  AsChecked(file)->eoa = address;
+  return 0;
+}
+
+haddr_t CheckedHdf5GetEof(const H5FD_t* file, H5FD_mem_t) {
+  return AsChecked(file)->eof;
+}
+
+herr_t CheckedHdf5Read(H5FD_t* base,
+                       H5FD_mem_t,
+                       hid_t,
+                       haddr_t address,
+                       size_t size,
+                       void* buffer) {
+  const CheckedHdf5File* file = AsChecked(base);
+  if (address > kMaxHdf5FileAddress || size > kMaxHdf5FileAddress - address) {
+    return -1;
+  }
+  unsigned char* out = static_cast<unsigned char*>(buffer);
+  while (size > 0 && address < file->eof) {
+    const size_t wanted =
+        static_cast<size_t>(std::min<haddr_t>(size, file->eof - address));
+    const ssize_t got =
+        pread(file->fd, out, wanted, static_cast<off_t>(address));
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) return -1;
+    if (got == 0) break;
+    out += got;
+    address += static_cast<haddr_t>(got);
+    size -= static_cast<size_t>(got);
+  }
+  std::memset(out, 0, size);
+  return 0;
+}
+
+herr_t CheckedHdf5Write(
+    H5FD_t*, H5FD_mem_t, hid_t, haddr_t, size_t, const void*) {
+  return -1;
+}
+
+// Registered once per HDF5 library lifetime.
+hid_t CheckedHdf5Driver() {
+  static hid_t driver = -1;
+  if (driver >= 0 && H5Iis_valid(driver) > 0) return driver;
+  static H5FD_class_t driver_class;
+  driver_class.name = "colmap_gcn_checked";
+  driver_class.maxaddr = kMaxHdf5FileAddress;
+  driver_class.fc_degree = H5F_CLOSE_WEAK;
+  driver_class.open = CheckedHdf5Open;
+  driver_class.close = CheckedHdf5Close;
+  driver_class.cmp = CheckedHdf5Compare;
+  driver_class.query = CheckedHdf5Query;
+  driver_class.get_eoa = CheckedHdf5GetEoa;
+  driver_class.set_eoa = CheckedHdf5SetEoa;
+  driver_class.get_eof = CheckedHdf5GetEof;
+  driver_class.read = CheckedHdf5Read;
+  driver_class.write = CheckedHdf5Write;
+  const H5FD_mem_t free_list_map[H5FD_MEM_NTYPES] = H5FD_FLMAP_DICHOTOMY;
+  std::copy(
+      free_list_map, free_list_map + H5FD_MEM_NTYPES, driver_class.fl_map);
+  driver = H5FDregister(&driver_class);
+  return driver;
+}
 
 const char kHdf5DatasetName[] = "global_descriptor";
 // Global descriptors have at most a few thousand dimensions (NetVLAD 4096).
@@ -128,7 +272,12 @@ ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
   }
   // Errors are reported through our exceptions, not HDF5's stderr dump.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  const Hdf5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+  const Hdf5Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (access.Id() < 0 ||
+      H5Pset_driver(access.Id(), CheckedHdf5Driver(), nullptr) < 0) {
+    ThrowError("cannot set up libhdf5 to read ", path);
+  }
+  const Hdf5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.Id()),
                         H5Fclose);
   if (file.Id() < 0) {
     ThrowError(path, " is not a readable HDF5 file");
