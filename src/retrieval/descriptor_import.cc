@@ -212,17 +212,69 @@ const char kHdf5DatasetName[] = "global_descriptor";
 // Global descriptors have at most a few thousand dimensions (NetVLAD 4096).
 constexpr hsize_t kMaxHdf5DescriptorDim = 1 << 20;
 
-herr_t CollectDescriptorPaths(hid_t,
-                              const char* name,
-                              const H5L_info_t*,
-                              void* data) {
-  const std::string path = name;
+// State of the group walk of ListDescriptorPaths.
+struct Hdf5GroupWalk {
+  std::string prefix;  // Path of the group being listed plus '/', or "".
+  std::vector<std::string> groups;  // Groups still to list.
+  std::set<haddr_t> seen;           // Addresses of groups queued or listed.
+  std::vector<std::string> dataset_paths;
+};
+
+herr_t CollectLink(hid_t group,
+                   const char* name,
+                   const H5L_info_t* link,
+                   void* data) {
+  Hdf5GroupWalk* walk = static_cast<Hdf5GroupWalk*>(data);
+  const std::string path = walk->prefix + name;
   const std::string suffix = std::string("/") + kHdf5DatasetName;
   if (path.size() > suffix.size() &&
       path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0) {
-    static_cast<std::vector<std::string>*>(data)->push_back(path);
+    walk->dataset_paths.push_back(path);
+  }
+  if (link->type != H5L_TYPE_HARD) return 0;
+  H5O_info_t info;
+  if (H5Oget_info_by_name2(group, name, &info, H5O_INFO_BASIC, H5P_DEFAULT) <
+      0) {
+    return -1;
+  }
+  if (info.type == H5O_TYPE_GROUP && walk->seen.insert(info.addr).second) {
+    walk->groups.push_back(path);
   }
   return 0;
+}
+
+// The paths of all links named kHdf5DatasetName below the root, like
+// H5Lvisit but listing each group object once, without recursion: H5Lvisit
+// only remembers groups whose header counts more than one link, so a corrupt
+// file whose group links back to itself or an ancestor made it recurse until
+// the stack overflowed.
+std::vector<std::string> ListDescriptorPaths(hid_t file,
+                                             const std::string& path) {
+  Hdf5GroupWalk walk;
+  walk.groups.push_back("/");
+  std::set<haddr_t> listed;
+  while (!walk.groups.empty()) {
+    const std::string group_path = walk.groups.back();
+    walk.groups.pop_back();
+    const Hdf5Handle group(H5Gopen2(file, group_path.c_str(), H5P_DEFAULT),
+                           H5Gclose);
+    H5O_info_t info;
+    if (group.Id() < 0 || H5Oget_info2(group.Id(), &info, H5O_INFO_BASIC) < 0) {
+      ThrowError("cannot list the groups of HDF5 file ", path);
+    }
+    walk.seen.insert(info.addr);
+    if (!listed.insert(info.addr).second) continue;
+    walk.prefix = group_path == "/" ? "" : group_path + "/";
+    if (H5Literate(group.Id(),
+                   H5_INDEX_NAME,
+                   H5_ITER_INC,
+                   nullptr,
+                   CollectLink,
+                   &walk) < 0) {
+      ThrowError("cannot list the groups of HDF5 file ", path);
+    }
+  }
+  return walk.dataset_paths;
 }
 
 // libhdf5 1.10 trusts the storage description of a dataset: a compact
@@ -282,14 +334,7 @@ ImportedDescriptors ReadHdf5GlobalDescriptors(const std::string& path) {
   if (file.Id() < 0) {
     ThrowError(path, " is not a readable HDF5 file");
   }
-  std::vector<std::string> dataset_paths;
-  if (H5Lvisit(file.Id(),
-               H5_INDEX_NAME,
-               H5_ITER_INC,
-               CollectDescriptorPaths,
-               &dataset_paths) < 0) {
-    ThrowError("cannot list the groups of HDF5 file ", path);
-  }
+  std::vector<std::string> dataset_paths = ListDescriptorPaths(file.Id(), path);
   std::sort(dataset_paths.begin(), dataset_paths.end());
   if (dataset_paths.empty()) {
     ThrowError("HDF5 file ",
