@@ -71,12 +71,12 @@ class Hdf5Handle {
 
 // libhdf5 1.10's metadata accumulator, which its stock file drivers turn
 // on, serves a read at the undefined address (all bits set, as a corrupt
-// group's local heap or B-tree address can be) by copying from its empty,
-// null buffer: a SEGV inside H5Lvisit. The public API cannot show such an
-// address before HDF5 follows it, so files are opened through this minimal
-// read-only POSIX driver instead: it leaves the accumulator off and refuses
-// reads outside the addressable range (HDF5 turns that into an error), and
-// otherwise reads like the default sec2 driver, zeros past the end included.
+// group's local heap address can be) by copying from a null pointer. The public
+// API cannot show such an address before HDF5 follows it, so files are opened
+// through this minimal read-only POSIX driver instead: it leaves the
+// accumulator off and refuses reads outside the addressable range (HDF5 turns
+// that into an error), and otherwise reads like the default sec2 driver, zeros
+// past the end included.
 struct CheckedHdf5File {
   H5FD_t base;  // First member: HDF5 passes &base to the callbacks.
   int fd;
