@@ -381,6 +381,106 @@ TEST(Hdf5Import, CompactDatasetSmallerThanItsShapeIsAnError) {
   }
 }
 
+// Found by fuzzing: a group whose symbol table gives the undefined address
+// (all bits set) for its local heap made libhdf5's metadata accumulator copy
+// from a null pointer inside H5Lvisit (SEGV). The file is a valid hloc file
+// with that one field of the a.jpg group set.
+TEST(Hdf5Import, GroupWithUndefinedHeapAddressIsAnError) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "heap.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "a.jpg", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {3};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   H5T_IEEE_F32LE,
+                                   space,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  const float values[3] = {1.5f, -2.25f, 3.125f};
+  H5Dwrite(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+  H5Dclose(dataset);
+  H5Sclose(space);
+  H5Gclose(group);
+  H5Fclose(file);
+  EXPECT_EQ(ReadGlobalDescriptors(path).vectors(0, 2), 3.125f);
+
+  // Symbol table messages (version 1 object headers): u16 type 0x11, u16
+  // size 16, flags and 3 reserved bytes, B-tree address, heap address. The
+  // root group's comes first, then that of a.jpg.
+  std::string bytes = ReadTextFile(path);
+  const std::string message("\x11\x00\x10\x00", 4);
+  const size_t root = bytes.find(message);
+  ASSERT_NE(root, std::string::npos);
+  const size_t at = bytes.find(message, root + 1);
+  ASSERT_NE(at, std::string::npos);
+  ASSERT_EQ(bytes.find(message, at + 1), std::string::npos);
+  for (size_t i = at + 16; i < at + 24; ++i) bytes[i] = '\xff';
+  WriteFileAtomically(path, bytes);
+  try {
+    ReadGlobalDescriptors(path);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "cannot list the groups of HDF5 file " + path);
+  }
+}
+
+// Found by fuzzing: a group linked from inside itself whose object header
+// counts one link made H5Lvisit, which only remembers groups counting more,
+// recurse until the stack overflowed. The file is a valid one with the cycle
+// (dir/c.jpg is dir) and that count patched from 2 to 1; each group is
+// listed once.
+TEST(Hdf5Import, GroupCycleIsListedOnce) {
+  const TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "cycle.h5");
+  const hid_t file =
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group =
+      H5Gcreate2(file, "dir", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {3};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t dataset = H5Dcreate2(group,
+                                   "global_descriptor",
+                                   H5T_IEEE_F32LE,
+                                   space,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT,
+                                   H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  const float values[3] = {1.5f, -2.25f, 3.125f};
+  H5Dwrite(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+  ASSERT_GE(
+      H5Lcreate_hard(file, "dir", group, "c.jpg", H5P_DEFAULT, H5P_DEFAULT), 0);
+  H5O_info_t info;
+  ASSERT_GE(H5Oget_info2(group, &info, H5O_INFO_BASIC), 0);
+  ASSERT_EQ(info.rc, 2u);
+  H5Dclose(dataset);
+  H5Sclose(space);
+  H5Gclose(group);
+  H5Fclose(file);
+  EXPECT_EQ(ReadGlobalDescriptors(path).names, std::vector<std::string>{"dir"});
+
+  // Version 1 object header: version, reserved, u16 message count, u32 link
+  // count.
+  std::string bytes = ReadTextFile(path);
+  ASSERT_LT(info.addr + 8, bytes.size());
+  ASSERT_EQ(bytes.substr(info.addr, 1), "\x01");
+  ASSERT_EQ(bytes.substr(info.addr + 4, 4), std::string("\x02\x00\x00\x00", 4));
+  bytes[info.addr + 4] = 1;
+  WriteFileAtomically(path, bytes);
+  const ImportedDescriptors imported = ReadGlobalDescriptors(path);
+  EXPECT_EQ(imported.names, std::vector<std::string>{"dir"});
+  EXPECT_EQ(imported.vectors(0, 2), 3.125f);
+}
+
 TEST(TextImport, ReadsNameAndValues) {
   const TemporaryDirectory dir;
   const std::string path = JoinPaths(dir.Path(), "d.txt");
