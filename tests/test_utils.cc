@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include <gtest/gtest.h>
+
+#include "util/error.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
@@ -80,6 +83,18 @@ int RunShell(const std::string& command, std::string* output) {
     *output = captured;
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+void ExpectErrorContaining(const std::function<void()>& function,
+                           const std::string& expected) {
+  try {
+    function();
+    ADD_FAILURE() << "expected an Error containing '" << expected << "'";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
 }
 
 }  // namespace test

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <string>
 
 namespace colmap_gcn {
@@ -22,6 +23,11 @@ int RunShell(const std::string& command, std::string* output = nullptr);
 // COLMAP 3.8's CREATE TABLE statements (as `.schema` prints them for a
 // database made by `colmap database_creator`), for hand-made databases.
 extern const char* const kColmap38Schema;
+
+// Expects function to throw colmap_gcn::Error with a one-line message that
+// contains expected.
+void ExpectErrorContaining(const std::function<void()>& function,
+                           const std::string& expected);
 
 }  // namespace test
 }  // namespace colmap_gcn

@@ -27,21 +27,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::ExecuteSql;
+using test::ExpectErrorContaining;
 using test::kColmap38Schema;
 using test::LeaveCommittedDataInWal;
 using test::QuerySqlInt;
-
-void ExpectErrorContaining(const std::function<void()>& function,
-                           const std::string& expected) {
-  try {
-    function();
-    ADD_FAILURE() << "expected an Error containing '" << expected << "'";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(expected), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
-}
 
 // A COLMAP-layout database in WAL mode with `num_images` images.
 void CreateDatabase(const std::string& path, const int num_images) {

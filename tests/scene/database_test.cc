@@ -20,6 +20,7 @@ namespace colmap_gcn {
 namespace {
 
 using test::ExecuteSql;
+using test::ExpectErrorContaining;
 using test::kColmap38Schema;
 using test::QuerySqlInt;
 
@@ -69,18 +70,6 @@ std::string HexBlob(const std::vector<T>& values) {
 std::string ReadFileBytes(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(file), {});
-}
-
-void ExpectErrorContaining(const std::function<void()>& function,
-                           const std::string& expected) {
-  try {
-    function();
-    ADD_FAILURE() << "expected an Error containing '" << expected << "'";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(expected), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
 }
 
 TEST(PairId, EncodesSmallerIdFirst) {
