@@ -18,21 +18,19 @@
 
 namespace colmap_gcn {
 
+void GcnMatchingOptions::Matching::Check() const {
+  CHECK_OPTION_GE(block_size, 1);
+}
+
 void GcnMatchingOptions::Check() const {
   CHECK_OPTION_ONE_OF(
       pairing, "gcn", "exhaustive", "imported", "knn", "vocab_tree");
-  CHECK_OPTION_UNSET_OR_GE(k1, -1, "the model's value", 1);
-  CHECK_OPTION_UNSET_OR_GE(k2, -1, "the model's value", 1);
-  CHECK_OPTION_UNSET_OR_GE(u, -1, "the model's value", 1);
-  CHECK_OPTION_UNSET_OR_RANGE(threshold, -1, "the model's value", 0.0, 1.0);
-  CHECK_OPTION_GE(min_pairs_per_image, 0);
-  CHECK_OPTION_GE(k, 1);
-  CHECK_OPTION_NUM_THREADS(num_threads);
-  if (pairing == "imported") {
-    CHECK_OPTION(match_list_path,
-                 !match_list_path.empty(),
-                 "name a pairs file when --GcnMatching.pairing is imported");
-  }
+  if (pairing == "gcn") gcn.Check();
+  if (pairing == "exhaustive") exhaustive.Check();
+  if (pairing == "imported") imported.Check();
+  if (pairing == "knn") knn.Check();
+  if (pairing == "vocab_tree") vocab_tree.Check();
+  matching.Check();
 }
 
 void CheckOutputFolder(const std::string& path) {
@@ -47,7 +45,7 @@ void CheckOutputFolder(const std::string& path) {
 }
 
 std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
-    const GcnMatchingOptions& options, const Database& database) {
+    const GcnModelPairingOptions& options, const Database& database) {
   const std::string model_path =
       options.model_path.empty() ? DefaultGcnModelPath() : options.model_path;
   if (model_path.empty()) {
@@ -78,46 +76,35 @@ std::unique_ptr<PairGenerator> CreatePairGenerator(
     const GcnMatchingOptions& options, const Database& database) {
   options.Check();
   if (options.pairing == "gcn") {
-    return CreateGcnPairGenerator(options, database);
+    return CreateGcnPairGenerator(options.gcn, database);
   }
   if (options.pairing == "knn") {
-    KnnPairingOptions knn;
-    knn.k = options.k;
-    knn.num_threads = options.num_threads;
-    knn.descriptors.embedding_path = options.embedding_path;
-    knn.descriptors.descriptor_path = options.descriptor_path;
-    return std::make_unique<KnnPairGenerator>(knn, database);
+    return std::make_unique<KnnPairGenerator>(options.knn, database);
   }
   if (options.pairing == "vocab_tree") {
-    VocabTreePairingOptions vocab_tree;
-    vocab_tree.k = options.k;
-    vocab_tree.vocab_tree_path = options.vocab_tree_path;
     ColmapRunnerOptions runner_options;
-    runner_options.log_path = options.colmap_log_path.empty()
+    runner_options.log_path = options.matching.colmap_log_path.empty()
                                   ? database.Path() + ".colmap.log"
-                                  : options.colmap_log_path;
-    runner_options.verbose = options.verbose;
+                                  : options.matching.colmap_log_path;
+    runner_options.verbose = options.matching.verbose;
     return std::make_unique<VocabTreePairGenerator>(
-        vocab_tree, database, ColmapRunner(runner_options));
+        options.vocab_tree, database, ColmapRunner(runner_options));
   }
   if (options.pairing == "imported") {
-    ImagePairsMatchingOptions imported;
-    imported.match_list_path = options.match_list_path;
-    return std::make_unique<ImportedPairGenerator>(imported, database);
+    return std::make_unique<ImportedPairGenerator>(options.imported, database);
   }
-  return std::make_unique<ExhaustivePairGenerator>(ExhaustiveMatchingOptions(),
+  return std::make_unique<ExhaustivePairGenerator>(options.exhaustive,
                                                    database);
 }
 
 GcnMatchingReport RunGcnMatching(const std::string& database_path,
-                                 const GcnMatchingOptions& options,
-                                 const std::vector<std::string>& colmap_args) {
+                                 const GcnMatchingOptions& options) {
   options.Check();
-  const std::string log_path = options.colmap_log_path.empty()
+  const std::string log_path = options.matching.colmap_log_path.empty()
                                    ? database_path + ".colmap.log"
-                                   : options.colmap_log_path;
+                                   : options.matching.colmap_log_path;
   CheckOutputFolder(log_path);
-  CheckOutputFolder(options.pairs_path);
+  CheckOutputFolder(options.matching.pairs_path);
   // Refused before minutes of pairing: a database we cannot replace, or one
   // that another gcn_matcher is working on (the lock spans the whole run).
   const std::string real_path = ResolveDatabasePath(database_path);
@@ -163,14 +150,14 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
 
   ColmapRunnerOptions runner_options;
   runner_options.log_path = log_path;
-  runner_options.verbose = options.verbose;
+  runner_options.verbose = options.matching.verbose;
   const ColmapRunner colmap(runner_options);
 
   PairMatchingOptions matching_options;
-  matching_options.pairs_path = options.pairs_path;
-  matching_options.colmap_args = colmap_args;
+  matching_options.pairs_path = options.matching.pairs_path;
+  matching_options.colmap_args = options.colmap_args;
   matching_options.scores = scores;
-  matching_options.block_size = options.block_size;
+  matching_options.block_size = options.matching.block_size;
   std::cerr << "gcn_matcher: " << pairs.size() << " pairs from "
             << options.pairing << " pairing of " << report.num_images
             << " images; matching with COLMAP " << colmap.Version() << "\n";

@@ -4,69 +4,56 @@
 #include <string>
 #include <vector>
 
+#include "controllers/gcn_model_pairing.h"
 #include "controllers/pair_matching.h"
+#include "controllers/vocab_tree_pairing.h"
 #include "feature/pairing.h"
 #include "gcn/gcn_pair_generator.h"
+#include "retrieval/knn_pairing.h"
 #include "scene/database.h"
 
 namespace colmap_gcn {
 
-// How `gcn_matcher` chooses pairs: the options users set as --GcnMatching.*.
+// How `gcn_matcher` chooses and matches pairs: the options users set as
+// --GcnMatching.* (flags in AddGcnMatchingOptions, exe/gcn_matcher.cc) and
+// --SiftMatching.*. One sub-struct per pair generator; only the chosen
+// generator's is used.
 struct GcnMatchingOptions {
   // Pair generator: gcn | exhaustive | imported | knn | vocab_tree.
   std::string pairing = "gcn";
 
-  // GCN model file (`colmap gcn_train`); empty: the default model
-  // (pairing = gcn).
-  std::string model_path = "";
+  GcnModelPairingOptions gcn;
+  ExhaustiveMatchingOptions exhaustive;
+  ImagePairsMatchingOptions imported;
+  KnnPairingOptions knn;
+  VocabTreePairingOptions vocab_tree;
 
-  // Query Enclosing Subgraph sizes (>= 1) and decision threshold (in
-  // [0, 1]) (pairing = gcn); -1 uses the model's recommendation.
-  int k1 = -1;
-  int k2 = -1;
-  int u = -1;
-  double threshold = -1;
+  // Matching the chosen pairs with COLMAP.
+  struct Matching {
+    // Pairs per COLMAP matching run; each run commits, so an interrupted
+    // matching loses at most one block.
+    int block_size = 1225;
 
-  // Every image keeps at least this many GCN pairs, its best-scoring ones,
-  // even when none clears the threshold (pairing = gcn).
-  int min_pairs_per_image = 2;
+    // Where the chosen pairs are written; empty:
+    // "<database_path>.pairs.txt".
+    std::string pairs_path = "";
 
-  // Pairs file to import (pairing = imported).
-  std::string match_list_path = "";
+    // Log of every COLMAP call with its full output; empty:
+    // "<database_path>.colmap.log".
+    std::string colmap_log_path = "";
 
-  // Neighbours retrieved per image (pairing = knn | vocab_tree).
-  int k = 25;
+    // Show all of COLMAP's output, not only progress.
+    bool verbose = false;
 
-  // Trained VLAD model (`colmap gcn_embedding_trainer`); empty: train on the
-  // database itself (pairing = knn).
-  std::string embedding_path = "";
+    void Check() const;
+  } matching;
 
-  // Imported global descriptors, .h5 (hloc) / .npy / .txt, used instead of
-  // VLAD (pairing = knn, or gcn with a model trained on them).
-  std::string descriptor_path = "";
+  // Passed to COLMAP's matches_importer unchanged: the user's
+  // --SiftMatching.* arguments.
+  std::vector<std::string> colmap_args;
 
-  // Vocabulary tree; empty: build one from the database itself
-  // (pairing = vocab_tree).
-  std::string vocab_tree_path = "";
-
-  // Threads for embedding and kNN; -1 uses all cores.
-  int num_threads = -1;
-
-  // Pairs per COLMAP matching run; each run commits, so an interrupted
-  // matching loses at most one block.
-  int block_size = 1225;
-
-  // Where the chosen pairs are written; empty: "<database_path>.pairs.txt".
-  std::string pairs_path = "";
-
-  // Log of every COLMAP call with its full output; empty:
-  // "<database_path>.colmap.log".
-  std::string colmap_log_path = "";
-
-  // Show all of COLMAP's output, not only progress.
-  bool verbose = false;
-
-  // Throws OptionError naming the first invalid field.
+  // Throws OptionError naming the first invalid field (of the chosen
+  // generator and of matching).
   void Check() const;
 };
 
@@ -77,7 +64,7 @@ void CheckOutputFolder(const std::string& path);
 // The GCN generator: the model (or the default one), its embedding of the
 // database, and the QES settings (model's recommendation unless set).
 std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
-    const GcnMatchingOptions& options, const Database& database);
+    const GcnModelPairingOptions& options, const Database& database);
 
 // The factory behind --GcnMatching.pairing; throws Error on a bad choice.
 std::unique_ptr<PairGenerator> CreatePairGenerator(
@@ -91,11 +78,9 @@ struct GcnMatchingReport {
 };
 
 // The whole `gcn_matcher` path: database -> pair generator -> pairs file ->
-// COLMAP matches_importer -> statistics. colmap_args are the user's
-// --SiftMatching.* options.
+// COLMAP matches_importer -> statistics.
 GcnMatchingReport RunGcnMatching(const std::string& database_path,
-                                 const GcnMatchingOptions& options,
-                                 const std::vector<std::string>& colmap_args);
+                                 const GcnMatchingOptions& options);
 
 // The short table users see.
 void PrintGcnMatchingReport(const GcnMatchingReport& report);

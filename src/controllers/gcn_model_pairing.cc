@@ -10,9 +10,19 @@
 #include "retrieval/vlad.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/option_check.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
+
+void GcnModelPairingOptions::Check() const {
+  CHECK_OPTION_UNSET_OR_GE(k1, -1, "the model's value", 1);
+  CHECK_OPTION_UNSET_OR_GE(k2, -1, "the model's value", 1);
+  CHECK_OPTION_UNSET_OR_GE(u, -1, "the model's value", 1);
+  CHECK_OPTION_UNSET_OR_RANGE(threshold, -1, "the model's value", 0.0, 1.0);
+  CHECK_OPTION_GE(min_pairs_per_image, 0);
+  CHECK_OPTION_NUM_THREADS(num_threads);
+}
 
 std::string DefaultGcnModelPath() {
   const char* env = std::getenv("COLMAP_GCN_MODEL");

@@ -11,6 +11,34 @@
 
 namespace colmap_gcn {
 
+// The GCN generator of `gcn_matcher` (--GcnMatching.pairing gcn): a model
+// file and its QES settings, each -1 taking the model's recommendation.
+struct GcnModelPairingOptions {
+  // GCN model file (`colmap gcn_train`); empty: DefaultGcnModelPath().
+  std::string model_path = "";
+
+  // Query Enclosing Subgraph sizes (>= 1) and decision threshold (in
+  // [0, 1]); -1 uses the model's recommendation.
+  int k1 = -1;
+  int k2 = -1;
+  int u = -1;
+  double threshold = -1;
+
+  // Every image keeps at least this many pairs, its best-scoring ones, even
+  // when none clears the threshold.
+  int min_pairs_per_image = 2;
+
+  // Imported global descriptors (.h5 / .npy / .txt), for a model trained on
+  // them; empty: the model's own VLAD.
+  std::string descriptor_path = "";
+
+  // Threads for embedding, kNN and inference; -1 uses all cores.
+  int num_threads = -1;
+
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
+};
+
 // The model `gcn_matcher` uses when none is given: $COLMAP_GCN_MODEL, else
 // the one installed beside the front end (../share/colmap-gcn/), else the
 // one in the source tree (colmap_gcn/models/default.gcnmodel). Empty if

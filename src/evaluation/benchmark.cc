@@ -739,7 +739,7 @@ std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
     if (name == "--GcnMatching.pairing") {
       options.pairing = value;
     } else if (name == "--GcnMatching.match_list_path") {
-      options.match_list_path = value;
+      options.imported.match_list_path = value;
     } else {
       ThrowError("option ", name, " is not supported by this build");
     }

@@ -58,8 +58,8 @@ int RunGcnReconstructor(int argc, char** argv) {
   if (!HoldsAnyFile(image_path)) {
     ThrowError("image folder ", image_path, " holds no files");
   }
-  CheckOutputFolder(matching_options.colmap_log_path);
-  CheckOutputFolder(matching_options.pairs_path);
+  CheckOutputFolder(matching_options.matching.colmap_log_path);
+  CheckOutputFolder(matching_options.matching.pairs_path);
   CreateDirIfNotExists(workspace_path);
   const std::string database_path = JoinPaths(workspace_path, "database.db");
   const std::string sparse_path = JoinPaths(workspace_path, "sparse");
@@ -67,10 +67,10 @@ int RunGcnReconstructor(int argc, char** argv) {
 
   ColmapRunnerOptions runner_options;
   runner_options.log_path = JoinPaths(workspace_path, "colmap.log");
-  runner_options.verbose = matching_options.verbose;
+  runner_options.verbose = matching_options.matching.verbose;
   const ColmapRunner colmap(runner_options);
-  if (matching_options.colmap_log_path.empty()) {
-    matching_options.colmap_log_path = runner_options.log_path;
+  if (matching_options.matching.colmap_log_path.empty()) {
+    matching_options.matching.colmap_log_path = runner_options.log_path;
   }
 
   std::cerr << "[1/3] feature_extractor\n";
@@ -96,10 +96,9 @@ int RunGcnReconstructor(int argc, char** argv) {
   }
 
   std::cerr << "[2/3] gcn_matcher\n";
+  matching_options.colmap_args = ArgumentsWithPrefix(args, {"SiftMatching."});
   const GcnMatchingReport matching =
-      RunGcnMatching(database_path,
-                     matching_options,
-                     ArgumentsWithPrefix(args, {"SiftMatching."}));
+      RunGcnMatching(database_path, matching_options);
 
   std::cerr << "[3/3] mapper\n";
   CreateDirIfNotExists(sparse_path);

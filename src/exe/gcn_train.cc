@@ -57,8 +57,8 @@ int RunGcnTrain(int argc, char** argv) {
   manager.AddDefaultOption("GcnTraining.test_k1", &training.test_qes.k1);
   manager.AddDefaultOption("GcnTraining.test_k2", &training.test_qes.k2);
   manager.AddDefaultOption("GcnTraining.test_u", &training.test_qes.u);
-  manager.AddDefaultOption(
-      "GcnTraining.optimizer", &training.optimizer, "sgd | adam");
+  manager.AddEnumOption(
+      "GcnTraining.optimizer", &training.optimizer, GcnOptimizerNames());
   manager.AddDefaultOption("GcnTraining.learning_rate",
                            &training.learning_rate);
   manager.AddDefaultOption("GcnTraining.num_epochs", &training.num_epochs);
@@ -69,14 +69,15 @@ int RunGcnTrain(int argc, char** argv) {
                            "output sizes of the graph convolutions "
                            "(paper / gcn_clustering: 512,512,256,256)");
   manager.AddDefaultOption("GcnTraining.fc_dim", &training.shape.fc_dim);
-  std::string aggregation = "symmetric";
-  manager.AddDefaultOption("GcnTraining.aggregation",
-                           &aggregation,
-                           "symmetric (paper: L^-1/2 A L^-1/2) | row "
-                           "(gcn_clustering: neighbour mean)");
-  manager.AddDefaultOption("GcnTraining.initialization",
-                           &training.initialization,
-                           "xavier | distance_prior (docs/gcn.md)");
+  manager.AddEnumOption("GcnTraining.aggregation",
+                        &training.aggregation,
+                        GcnAggregationNames(),
+                        "symmetric: the paper's L^-1/2 A L^-1/2; row: "
+                        "gcn_clustering's neighbour mean");
+  manager.AddEnumOption("GcnTraining.initialization",
+                        &training.initialization,
+                        GcnInitializationNames(),
+                        "docs/gcn.md");
   std::string lr_decay_epochs = "2,3";
   manager.AddDefaultOption("GcnTraining.lr_decay_epochs",
                            &lr_decay_epochs,
@@ -114,13 +115,10 @@ int RunGcnTrain(int argc, char** argv) {
                              training.lr_decay_epochs.end(),
                              [](int epoch) { return epoch >= 0; }),
                  "be a comma list of epochs >= 0");
-    CHECK_OPTION_ONE_OF(aggregation, "symmetric", "row");
     // The number of threads first: the VLAD's copy is not a flag.
     CHECK_OPTION_NUM_THREADS(training.num_threads);
     options.Check();
   });
-  training.aggregation = aggregation == "row" ? GcnAggregation::kRowNormalized
-                                              : GcnAggregation::kSymmetric;
 
   const std::vector<std::string> validation_names =
       SplitCommaList(validation_scenes);

@@ -182,13 +182,24 @@ std::string FormatStats(const GcnClassificationStats& s) {
 
 }  // namespace
 
+const EnumNames<GcnInitialization>& GcnInitializationNames() {
+  static const EnumNames<GcnInitialization> names = {
+      {"xavier", GcnInitialization::kXavier},
+      {"distance_prior", GcnInitialization::kDistancePrior}};
+  return names;
+}
+
+const EnumNames<GcnOptimizer>& GcnOptimizerNames() {
+  static const EnumNames<GcnOptimizer> names = {{"sgd", GcnOptimizer::kSgd},
+                                                {"adam", GcnOptimizer::kAdam}};
+  return names;
+}
+
 void GcnTrainingOptions::Check() const {
   shape.Check();
   qes.Check();
   test_qes.Check();
-  CHECK_OPTION_ONE_OF(initialization, "xavier", "distance_prior");
   CHECK_OPTION_GE(prior_other_scale, 0.f);
-  CHECK_OPTION_ONE_OF(optimizer, "sgd", "adam");
   CHECK_OPTION_GT(learning_rate, 0.0);
   CHECK_OPTION_GE(momentum, 0.0);
   CHECK_OPTION_GE(weight_decay, 0.0);
@@ -309,7 +320,7 @@ GcnModel GcnTrainer::Train(
   GcnShape shape = o.shape;
   shape.input_dim = dim;
   GcnModel model = InitializeGcnModel(shape, o.aggregation, o.seed);
-  const bool prior = o.initialization == "distance_prior";
+  const bool prior = o.initialization == GcnInitialization::kDistancePrior;
   BuilderPool pool(prepared, threads);
 
   // Input standardisation from a sample of training subgraphs (the fixed
@@ -417,7 +428,8 @@ GcnModel GcnTrainer::Train(
          << train_samples.size() << " training / " << val_samples.size()
          << " validation subgraphs, 1-hop positives " << num_pos << " / "
          << num_one_hop << ", positive weight " << positive_weight
-         << ", optimizer " << o.optimizer << ", " << threads << " thread(s)";
+         << ", optimizer " << EnumName(GcnOptimizerNames(), o.optimizer) << ", "
+         << threads << " thread(s)";
     log(line.str());
   }
 
@@ -501,7 +513,7 @@ GcnModel GcnTrainer::Train(
       }
       ++step;
       const double inv_nodes = 1.0 / static_cast<double>(nodes);
-      if (o.optimizer == "sgd") {
+      if (o.optimizer == GcnOptimizer::kSgd) {
         for (size_t j = 0; j < params.size(); ++j) {
           const double d = grad[j] * inv_nodes + o.weight_decay * params[j];
           const double v = step == 1 ? d : o.momentum * state1[j] + d;
@@ -580,9 +592,10 @@ GcnModel GcnTrainer::Train(
           << " images, " << pairs << " positive pairs; QES k1=" << o.qes.k1
           << " k2=" << o.qes.k2 << " u=" << o.qes.u << "; "
           << GcnAggregationName(o.aggregation) << " aggregation; "
-          << o.optimizer << " lr " << o.learning_rate << ", batch "
-          << o.batch_size << ", positive weight " << positive_weight
-          << ", seed " << o.seed << "; " << o.initialization
+          << EnumName(GcnOptimizerNames(), o.optimizer) << " lr "
+          << o.learning_rate << ", batch " << o.batch_size
+          << ", positive weight " << positive_weight << ", seed " << o.seed
+          << "; " << EnumName(GcnInitializationNames(), o.initialization)
           << " initialisation; " << train_samples.size() << " train / "
           << val_samples.size() << " val subgraphs; best epoch " << best_epoch
           << " of " << history_.size();

@@ -9,6 +9,7 @@
 #include "gcn/gcn_model.h"
 #include "gcn/query_enclosing_subgraph.h"
 #include "retrieval/knn.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 
@@ -27,26 +28,36 @@ struct GcnTrainingScene {
 // Prints the line to stdout (the default training log).
 void PrintGcnTrainingLog(const std::string& line);
 
+// How training starts (GcnTrainingOptions::initialization).
+enum class GcnInitialization { kXavier, kDistancePrior };
+// "xavier", "distance_prior".
+const EnumNames<GcnInitialization>& GcnInitializationNames();
+
+// The optimiser (GcnTrainingOptions::optimizer).
+enum class GcnOptimizer { kSgd, kAdam };
+// "sgd", "adam".
+const EnumNames<GcnOptimizer>& GcnOptimizerNames();
+
 struct GcnTrainingOptions {
   // Network; shape.input_dim is taken from the embeddings.
   GcnShape shape;
   GcnAggregation aggregation = GcnAggregation::kSymmetric;
 
-  // "xavier" (gcn_clustering's random start) or "distance_prior": start
+  // kXavier (gcn_clustering's random start) or kDistancePrior: start
   // from the context-aware distance classifier (InitializeDistancePrior)
   // with one global input scale instead of per-dimension standardisation,
   // its output calibrated to median 0 / unit spread on the training
   // subgraphs, and the starting point evaluated as "epoch 0" (kept when no
   // epoch beats it on validation).
-  std::string initialization = "xavier";
+  GcnInitialization initialization = GcnInitialization::kXavier;
   // Scale of the Xavier weights of the units the prior does not use.
   float prior_other_scale = 0.1f;
 
   // QES used for the training samples (paper: k1 = 100, k2 = 5, u = 10).
   QesOptions qes{100, 5, 10};
 
-  // "sgd" (momentum, torch semantics) or "adam".
-  std::string optimizer = "sgd";
+  // kSgd (momentum, torch semantics) or kAdam.
+  GcnOptimizer optimizer = GcnOptimizer::kSgd;
   double learning_rate = 0.01;
   double momentum = 0.9;
   double weight_decay = 1e-4;

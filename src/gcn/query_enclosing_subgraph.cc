@@ -26,6 +26,13 @@ const char* GcnAggregationName(GcnAggregation aggregation) {
   return "unknown";
 }
 
+const EnumNames<GcnAggregation>& GcnAggregationNames() {
+  static const EnumNames<GcnAggregation> names = {
+      {"symmetric", GcnAggregation::kSymmetric},
+      {"row", GcnAggregation::kRowNormalized}};
+  return names;
+}
+
 Eigen::MatrixXf QuerySubgraph::DenseAdjacency() const {
   const int n = NumNodes();
   Eigen::MatrixXf dense = Eigen::MatrixXf::Zero(n, n);

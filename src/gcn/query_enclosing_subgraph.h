@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "retrieval/knn.h"
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 
@@ -34,6 +35,8 @@ enum class GcnAggregation : int {
 };
 
 const char* GcnAggregationName(GcnAggregation aggregation);
+// "symmetric", "row": the names of --GcnTraining.aggregation.
+const EnumNames<GcnAggregation>& GcnAggregationNames();
 
 // The nodes and undirected edges of one QES. Nodes are collection indices;
 // nodes[0, num_one_hop) are the 1-hop nodes in kNN order, the rest the 2-hop

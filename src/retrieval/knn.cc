@@ -12,11 +12,16 @@
 
 namespace colmap_gcn {
 
+const EnumNames<KnnMethod>& KnnMethodNames() {
+  static const EnumNames<KnnMethod> names = {
+      {"exact", KnnMethod::kExact}, {"faiss_hnsw", KnnMethod::kFaissHnsw}};
+  return names;
+}
+
 void KnnOptions::Check() const {
   CHECK_OPTION_GE(k, 0);
   CHECK_OPTION_NUM_THREADS(num_threads);
   CHECK_OPTION_GE(block_size, 1);
-  CHECK_OPTION_ONE_OF(method, "exact", "faiss_hnsw");
   CHECK_OPTION_GE(hnsw_m, 2);
   CHECK_OPTION_GE(hnsw_ef_search, 1);
 }
@@ -215,7 +220,7 @@ KnnGraph ComputeApproximateKnn(const EmbeddingMatrix&, const KnnOptions&) {
 
 KnnGraph ComputeKnn(const EmbeddingMatrix& embeddings,
                     const KnnOptions& options) {
-  if (options.method == "faiss_hnsw") {
+  if (options.method == KnnMethod::kFaissHnsw) {
     return ComputeApproximateKnn(embeddings, options);
   }
   return ComputeExactKnn(embeddings, options);

@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 
+#include "util/option_check.h"
+
 namespace colmap_gcn {
 
 // Global image descriptors, one row per image, L2-normalised, so that the
@@ -12,6 +14,14 @@ namespace colmap_gcn {
 // ||a - b||^2 = 2 - 2 a.b.
 typedef Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
     EmbeddingMatrix;
+
+// The neighbour search (KnnOptions::method).
+enum class KnnMethod {
+  kExact,      // ComputeExactKnn
+  kFaissHnsw,  // ComputeApproximateKnn, only built with FAISS
+};
+// "exact", "faiss_hnsw".
+const EnumNames<KnnMethod>& KnnMethodNames();
 
 struct KnnOptions {
   // Neighbours per image (capped at N - 1).
@@ -25,9 +35,9 @@ struct KnnOptions {
   // ~ block_size x block_size floats per thread plus the N x k result.
   int block_size = 1024;
 
-  // "exact" (ComputeExactKnn) or "faiss_hnsw" (ComputeApproximateKnn, only
+  // kExact (ComputeExactKnn) or kFaissHnsw (ComputeApproximateKnn, only
   // when built with FAISS; see FaissAvailable()). Used by ComputeKnn.
-  std::string method = "exact";
+  KnnMethod method = KnnMethod::kExact;
 
   // HNSW graph degree and search breadth for method = "faiss_hnsw".
   int hnsw_m = 32;

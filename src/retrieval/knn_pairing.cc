@@ -11,7 +11,6 @@ namespace colmap_gcn {
 void KnnPairingOptions::Check() const {
   CHECK_OPTION_GE(k, 1);
   descriptors.Check();
-  CHECK_OPTION_ONE_OF(knn_method, "exact", "faiss_hnsw");
   CHECK_OPTION_NUM_THREADS(num_threads);
   CHECK_OPTION_GE(block_size, 1);
 }

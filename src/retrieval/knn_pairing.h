@@ -17,8 +17,8 @@ struct KnnPairingOptions {
   // Where the global descriptors come from.
   GlobalDescriptorOptions descriptors;
 
-  // "exact" or "faiss_hnsw" (see KnnOptions).
-  std::string knn_method = "exact";
+  // See KnnOptions::method.
+  KnnMethod knn_method = KnnMethod::kExact;
 
   // Threads for embedding and kNN; -1 uses all cores.
   int num_threads = -1;

@@ -2,6 +2,7 @@
 
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "util/error.h"
@@ -86,6 +87,47 @@ bool IsOneOf(const std::string& value, const std::vector<std::string>& choices);
 std::string JoinChoices(const std::vector<std::string>& choices);
 
 }  // namespace internal
+
+// The names users type for the values of an enum option, in the order help
+// and errors list them: {{"sgd", GcnOptimizer::kSgd}, {"adam", ...}}.
+template <typename Enum>
+using EnumNames = std::vector<std::pair<std::string, Enum>>;
+
+// The name of `value` in `names` ("" when it has none).
+template <typename Enum>
+std::string EnumName(const EnumNames<Enum>& names, Enum value) {
+  for (const auto& [name, entry] : names) {
+    if (entry == value) return name;
+  }
+  return "";
+}
+
+// "a|b|c": the allowed names.
+template <typename Enum>
+std::string EnumChoices(const EnumNames<Enum>& names) {
+  std::string text;
+  for (const auto& entry : names) {
+    text += (text.empty() ? "" : "|") + entry.first;
+  }
+  return text;
+}
+
+// The value named `text`; throws Error "<what> must be one of a|b (got
+// "text")", `what` being the flag (e.g. "--GcnTraining.optimizer").
+template <typename Enum>
+Enum ParseEnum(const EnumNames<Enum>& names,
+               const std::string& text,
+               const std::string& what) {
+  for (const auto& [name, value] : names) {
+    if (name == text) return value;
+  }
+  ThrowError(what,
+             " must be one of ",
+             EnumChoices(names),
+             " (got ",
+             internal::FormatOptionValue(text),
+             ")");
+}
 
 // Option checks for Options::Check(), in the manner of COLMAP's
 // CHECK_OPTION_*: each throws OptionError naming the member (as written in

@@ -60,13 +60,20 @@ bool OptionManager::Parse(int argc, char** argv) {
   }
 
   po::variables_map vmap;
+  given_.clear();
   try {
-    po::store(po::command_line_parser(ours).options(*desc_).run(), vmap);
+    const po::parsed_options parsed =
+        po::command_line_parser(ours).options(*desc_).run();
+    po::store(parsed, vmap);
     if (vmap.count("help") > 0) {
       std::cout << Help() << std::flush;
       return false;
     }
     po::notify(vmap);
+    for (const auto& option : parsed.options) {
+      given_[option.string_key] = StringJoin(option.value, " ");
+    }
+    for (const auto& step : after_parse_) step(vmap);
   } catch (const po::error& error) {
     ThrowError("colmap ",
                command_,
@@ -87,6 +94,15 @@ void OptionManager::Check(const std::function<void()>& check) const {
     if (flag.empty()) throw;
     throw Error(error.MessageFor(flag));
   }
+}
+
+bool OptionManager::IsGiven(const std::string& name) const {
+  return given_.count(name) > 0;
+}
+
+std::string OptionManager::GivenValue(const std::string& name) const {
+  const auto it = given_.find(name);
+  return it == given_.end() ? "" : it->second;
 }
 
 std::string OptionManager::FlagName(const void* field) const {

@@ -1,12 +1,16 @@
 #pragma once
 
 #include <functional>
+#include <list>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <boost/program_options.hpp>
+
+#include "util/option_check.h"
 
 namespace colmap_gcn {
 
@@ -21,10 +25,21 @@ class OptionManager {
   void AddRequiredOption(const std::string& name,
                          T* option,
                          const std::string& help = "");
+  // A flag may be bound to several fields of the same type (e.g.
+  // --GcnMatching.k to the retrieval depth of knn and of vocab_tree): the
+  // first binding's default and help are shown, a given value sets all.
   template <typename T>
   void AddDefaultOption(const std::string& name,
                         T* option,
                         const std::string& help = "");
+
+  // An enum option typed as one of `names`; a value outside them fails
+  // Parse with "--<name> must be one of a|b (got "x")".
+  template <typename Enum>
+  void AddEnumOption(const std::string& name,
+                     Enum* option,
+                     const EnumNames<Enum>& names,
+                     const std::string& help = "");
 
   // Options starting with one of these prefixes (e.g. "SiftMatching.") are
   // not ours: they are collected verbatim for passing on to COLMAP.
@@ -39,6 +54,11 @@ class OptionManager {
   bool Parse(int argc, char** argv);
 
   std::string Help() const;
+
+  // Whether option `name` (without "--") was on the command line, and its
+  // value as typed ("" when not given).
+  bool IsGiven(const std::string& name) const;
+  std::string GivenValue(const std::string& name) const;
 
   // Runs check (an Options::Check(), called once right after Parse and
   // before any work) and rethrows an OptionError about a member bound to a
@@ -57,6 +77,12 @@ class OptionManager {
   std::vector<std::string> pass_through_prefixes_;
   std::vector<std::string> pass_through_;
   std::vector<std::pair<const void*, std::string>> flags_;
+  // Run after parsing: enum conversions and the extra fields of flags bound
+  // more than once.
+  std::vector<std::function<void(const boost::program_options::variables_map&)>>
+      after_parse_;
+  std::list<std::string> enum_texts_;
+  std::map<std::string, std::string> given_;
 };
 
 // The arguments of `args` (as collected by PassThroughArguments) whose
@@ -89,11 +115,38 @@ template <typename T>
 void OptionManager::AddDefaultOption(const std::string& name,
                                      T* option,
                                      const std::string& help) {
+  flags_.emplace_back(option, "--" + name);
+  if (desc_->find_nothrow(name, false) != nullptr) {
+    after_parse_.push_back(
+        [name, option](const boost::program_options::variables_map& vmap) {
+          if (vmap.count(name) > 0 && !vmap[name].defaulted()) {
+            *option = vmap[name].as<T>();
+          }
+        });
+    return;
+  }
   desc_->add_options()(
       name.c_str(),
       boost::program_options::value<T>(option)->default_value(*option),
       help.c_str());
+}
+
+template <typename Enum>
+void OptionManager::AddEnumOption(const std::string& name,
+                                  Enum* option,
+                                  const EnumNames<Enum>& names,
+                                  const std::string& help) {
+  std::string* text = &enum_texts_.emplace_back(EnumName(names, *option));
+  const std::string choices = EnumChoices(names);
+  desc_->add_options()(
+      name.c_str(),
+      boost::program_options::value<std::string>(text)->default_value(*text),
+      (help.empty() ? choices : help + " (" + choices + ")").c_str());
   flags_.emplace_back(option, "--" + name);
+  after_parse_.push_back([name, option, names, text](
+                             const boost::program_options::variables_map&) {
+    *option = ParseEnum(names, *text, "--" + name);
+  });
 }
 
 }  // namespace colmap_gcn

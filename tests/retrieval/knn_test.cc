@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "test_utils.h"
 #include "util/error.h"
 #include "util/option_check.h"
 
@@ -184,9 +185,11 @@ TEST(ExactKnn, RejectsNonFiniteInputAndBadOptions) {
   KnnOptions options;
   options.block_size = 0;
   EXPECT_THROW(ComputeExactKnn(EmbeddingMatrix::Ones(3, 2), options), Error);
-  options = KnnOptions();
-  options.method = "annoy";
-  EXPECT_THROW(options.Check(), OptionError);
+  EXPECT_EQ(ParseEnum(KnnMethodNames(), "faiss_hnsw", "method"),
+            KnnMethod::kFaissHnsw);
+  test::ExpectErrorContaining(
+      [] { ParseEnum(KnnMethodNames(), "annoy", "--method"); },
+      "--method must be one of exact|faiss_hnsw (got \"annoy\")");
 }
 
 TEST(ApproximateKnn, FindsNearNeighboursWhenAvailable) {
@@ -202,10 +205,10 @@ TEST(ApproximateKnn, FindsNearNeighboursWhenAvailable) {
   x.rowwise().normalize();
   KnnOptions options;
   options.k = 10;
-  options.method = "faiss_hnsw";
+  options.method = KnnMethod::kFaissHnsw;
   options.num_threads = 1;
   const KnnGraph approximate = ComputeKnn(x, options);
-  options.method = "exact";
+  options.method = KnnMethod::kExact;
   const KnnGraph exact = ComputeKnn(x, options);
   ASSERT_EQ(approximate.K(), 10);
   int found = 0;
