@@ -5,15 +5,12 @@
 #include <iostream>
 
 #include "controllers/colmap_runner.h"
-#include "controllers/gcn_model_pairing.h"
-#include "controllers/vocab_tree_pairing.h"
-#include "gcn/model_file.h"
-#include "retrieval/knn_pairing.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"
 #include "util/file_lock.h"
 #include "util/interrupt.h"
 #include "util/option_check.h"
+#include "util/string.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
@@ -22,14 +19,16 @@ void GcnMatchingOptions::Matching::Check() const {
   CHECK_OPTION_GE(block_size, 1);
 }
 
+GcnMatchingOptions::GcnMatchingOptions()
+    : pairing(PairGenerators().Names().front()),
+      generators(PairGenerators().DefaultOptions()) {}
+
 void GcnMatchingOptions::Check() const {
-  CHECK_OPTION_ONE_OF(
-      pairing, "gcn", "exhaustive", "imported", "knn", "vocab_tree");
-  if (pairing == "gcn") gcn.Check();
-  if (pairing == "exhaustive") exhaustive.Check();
-  if (pairing == "imported") imported.Check();
-  if (pairing == "knn") knn.Check();
-  if (pairing == "vocab_tree") vocab_tree.Check();
+  const std::vector<std::string> names = PairGenerators().Names();
+  CHECK_OPTION(pairing,
+               PairGenerators().Has(pairing),
+               "be one of " + StringJoin(names, "|"));
+  PairGenerators().Check(pairing, generators);
   matching.Check();
 }
 
@@ -44,57 +43,13 @@ void CheckOutputFolder(const std::string& path) {
   }
 }
 
-std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
-    const GcnModelPairingOptions& options, const Database& database) {
-  const std::string model_path =
-      options.model_path.empty() ? DefaultGcnModelPath() : options.model_path;
-  if (model_path.empty()) {
-    ThrowError(
-        "no GCN model: pass --GcnMatching.model_path (train one with colmap "
-        "gcn_train) or choose another --GcnMatching.pairing");
-  }
-  const GcnModel model = ReadGcnModel(model_path);
-  GcnPairingOptions pairing = GcnPairingOptionsFromModel(model);
-  if (options.k1 > 0) pairing.k1 = options.k1;
-  if (options.k2 > 0) pairing.k2 = options.k2;
-  if (options.u > 0) pairing.u = options.u;
-  if (options.threshold >= 0) pairing.threshold = options.threshold;
-  pairing.min_pairs_per_image = options.min_pairs_per_image;
-  pairing.num_threads = options.num_threads;
-  std::vector<image_t> image_ids;
-  const EmbeddingMatrix embeddings =
-      ComputeModelEmbeddings(model,
-                             database,
-                             options.descriptor_path,
-                             options.num_threads,
-                             &image_ids);
-  return std::make_unique<GcnPairGenerator>(
-      pairing, image_ids, embeddings, model);
-}
-
 std::unique_ptr<PairGenerator> CreatePairGenerator(
     const GcnMatchingOptions& options, const Database& database) {
   options.Check();
-  if (options.pairing == "gcn") {
-    return CreateGcnPairGenerator(options.gcn, database);
-  }
-  if (options.pairing == "knn") {
-    return std::make_unique<KnnPairGenerator>(options.knn, database);
-  }
-  if (options.pairing == "vocab_tree") {
-    ColmapRunnerOptions runner_options;
-    runner_options.log_path = options.matching.colmap_log_path.empty()
-                                  ? database.Path() + ".colmap.log"
-                                  : options.matching.colmap_log_path;
-    runner_options.verbose = options.matching.verbose;
-    return std::make_unique<VocabTreePairGenerator>(
-        options.vocab_tree, database, ColmapRunner(runner_options));
-  }
-  if (options.pairing == "imported") {
-    return std::make_unique<ImportedPairGenerator>(options.imported, database);
-  }
-  return std::make_unique<ExhaustivePairGenerator>(options.exhaustive,
-                                                   database);
+  PairGeneratorContext context(database);
+  context.colmap_log_path = options.matching.colmap_log_path;
+  context.verbose = options.matching.verbose;
+  return PairGenerators().Create(options.pairing, options.generators, context);
 }
 
 GcnMatchingReport RunGcnMatching(const std::string& database_path,
@@ -135,16 +90,10 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
         CreatePairGenerator(options, database);
     StopPointForTests("pairing");
     pairs = generator->AllPairs();
-    // The GCN's scores go into the pairs file for users to inspect.
-    if (const auto* gcn =
-            dynamic_cast<const GcnPairGenerator*>(generator.get())) {
-      for (const ScoredImagePair& pair : gcn->ScoredPairs()) {
-        scores.push_back(pair.score);
-      }
-      const std::string warning =
-          GcnKeptEveryCandidateWarning(gcn->Stats(), gcn->Options().k1);
-      if (!warning.empty()) std::cerr << warning << "\n";
-    }
+    // Scores (the GCN's) go into the pairs file for users to inspect.
+    scores = generator->Scores();
+    const std::string warning = generator->Warning();
+    if (!warning.empty()) std::cerr << warning << "\n";
   }
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
 
@@ -164,22 +113,6 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   report.matching =
       MatchImagePairs(colmap, database_path, pairs, matching_options);
   return report;
-}
-
-std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1) {
-  if (stats.num_candidates == 0 ||
-      stats.num_above_threshold < stats.num_candidates) {
-    return "";
-  }
-  return "gcn_matcher: warning: all " + std::to_string(stats.num_candidates) +
-         " candidate pairs scored above the model's threshold: the GCN "
-         "chose nothing beyond each image's k1 = " +
-         std::to_string(k1) +
-         " nearest neighbours; the model is likely not calibrated for "
-         "these images (docs/model_card.md). On photos of several "
-         "unrelated places try --GcnMatching.threshold 0.9; on scenes with "
-         "duplicate objects or repeated structure use --GcnMatching.pairing "
-         "knn --GcnMatching.k 5 or sequential_matcher.";
 }
 
 void PrintGcnMatchingReport(const GcnMatchingReport& report) {

@@ -4,29 +4,27 @@
 #include <string>
 #include <vector>
 
-#include "controllers/gcn_model_pairing.h"
+#include "controllers/pair_generator_registry.h"
 #include "controllers/pair_matching.h"
-#include "controllers/vocab_tree_pairing.h"
 #include "feature/pairing.h"
-#include "gcn/gcn_pair_generator.h"
-#include "retrieval/knn_pairing.h"
 #include "scene/database.h"
 
 namespace colmap_gcn {
 
 // How `gcn_matcher` chooses and matches pairs: the options users set as
-// --GcnMatching.* (flags in AddGcnMatchingOptions, exe/gcn_matcher.cc) and
-// --SiftMatching.*. One sub-struct per pair generator; only the chosen
-// generator's is used.
+// --GcnMatching.* (AddGcnMatchingOptions, exe/gcn_matcher.cc) and
+// --SiftMatching.*.
 struct GcnMatchingOptions {
-  // Pair generator: gcn | exhaustive | imported | knn | vocab_tree.
-  std::string pairing = "gcn";
+  // Every registered generator's options at their defaults.
+  GcnMatchingOptions();
 
-  GcnModelPairingOptions gcn;
-  ExhaustiveMatchingOptions exhaustive;
-  ImagePairsMatchingOptions imported;
-  KnnPairingOptions knn;
-  VocabTreePairingOptions vocab_tree;
+  // Pair generator, a name in PairGenerators(); default: the first
+  // registered (gcn).
+  std::string pairing;
+
+  // Each generator's own options, e.g. generators.Get<KnnPairingOptions>(
+  // "knn"); only the chosen generator's are used.
+  PairGeneratorOptions generators;
 
   // Matching the chosen pairs with COLMAP.
   struct Matching {
@@ -61,12 +59,8 @@ struct GcnMatchingOptions {
 // file) does not exist; "" passes.
 void CheckOutputFolder(const std::string& path);
 
-// The GCN generator: the model (or the default one), its embedding of the
-// database, and the QES settings (model's recommendation unless set).
-std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
-    const GcnModelPairingOptions& options, const Database& database);
-
-// The factory behind --GcnMatching.pairing; throws Error on a bad choice.
+// The generator --GcnMatching.pairing names, from PairGenerators(); throws
+// Error on a bad choice or invalid options.
 std::unique_ptr<PairGenerator> CreatePairGenerator(
     const GcnMatchingOptions& options, const Database& database);
 
@@ -84,12 +78,5 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
 
 // The short table users see.
 void PrintGcnMatchingReport(const GcnMatchingReport& report);
-
-// A one-line warning when the GCN kept every candidate pair it scored: it
-// then chose nothing beyond the k1 nearest neighbours, which is what a
-// model does on images unlike its training scenes (all real photo sets
-// for the default model, docs/model_card.md), and on scenes with
-// duplicate structure it admits the pairs that fold models. "" otherwise.
-std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1);
 
 }  // namespace colmap_gcn

@@ -5,12 +5,14 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "gcn/model_file.h"
 #include "retrieval/descriptor_import.h"
 #include "retrieval/embedding_cache.h"
 #include "retrieval/vlad.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/option_check.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -82,6 +84,106 @@ EmbeddingMatrix ComputeModelEmbeddings(const GcnModel& model,
   }
   model.CheckEmbeddingDimension(static_cast<int>(embeddings.cols()));
   return embeddings;
+}
+
+namespace {
+
+// The GCN generator as gcn_matcher reports it: with the warning on a
+// model that kept every candidate.
+class GcnModelPairGenerator : public GcnPairGenerator {
+ public:
+  using GcnPairGenerator::GcnPairGenerator;
+
+  std::string Warning() const override {
+    return GcnKeptEveryCandidateWarning(Stats(), Options().k1);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
+    const GcnModelPairingOptions& options, const Database& database) {
+  const std::string model_path =
+      options.model_path.empty() ? DefaultGcnModelPath() : options.model_path;
+  if (model_path.empty()) {
+    ThrowError(
+        "no GCN model: pass --GcnMatching.model_path (train one with colmap "
+        "gcn_train) or choose another --GcnMatching.pairing");
+  }
+  const GcnModel model = ReadGcnModel(model_path);
+  GcnPairingOptions pairing = GcnPairingOptionsFromModel(model);
+  if (options.k1 > 0) pairing.k1 = options.k1;
+  if (options.k2 > 0) pairing.k2 = options.k2;
+  if (options.u > 0) pairing.u = options.u;
+  if (options.threshold >= 0) pairing.threshold = options.threshold;
+  pairing.min_pairs_per_image = options.min_pairs_per_image;
+  pairing.num_threads = options.num_threads;
+  std::vector<image_t> image_ids;
+  const EmbeddingMatrix embeddings =
+      ComputeModelEmbeddings(model,
+                             database,
+                             options.descriptor_path,
+                             options.num_threads,
+                             &image_ids);
+  return std::make_unique<GcnModelPairGenerator>(
+      pairing, image_ids, embeddings, model);
+}
+
+std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1) {
+  if (stats.num_candidates == 0 ||
+      stats.num_above_threshold < stats.num_candidates) {
+    return "";
+  }
+  return "gcn_matcher: warning: all " + std::to_string(stats.num_candidates) +
+         " candidate pairs scored above the model's threshold: the GCN "
+         "chose nothing beyond each image's k1 = " +
+         std::to_string(k1) +
+         " nearest neighbours; the model is likely not calibrated for "
+         "these images (docs/model_card.md). On photos of several "
+         "unrelated places try --GcnMatching.threshold 0.9; on scenes with "
+         "duplicate objects or repeated structure use --GcnMatching.pairing "
+         "knn --GcnMatching.k 5 or sequential_matcher.";
+}
+
+PairGeneratorSpec<GcnModelPairingOptions> GcnModelPairGeneratorSpec() {
+  PairGeneratorSpec<GcnModelPairingOptions> spec;
+  spec.name = "gcn";
+  spec.add_options = [](OptionManager* manager,
+                        GcnModelPairingOptions* options) {
+    manager->AddDefaultOption(
+        "GcnMatching.model_path",
+        &options->model_path,
+        "GCN model file (pairing=gcn); empty: default model");
+    manager->AddDefaultOption("GcnMatching.k1",
+                              &options->k1,
+                              "1-hop neighbours per query; -1: model's value");
+    manager->AddDefaultOption("GcnMatching.k2",
+                              &options->k2,
+                              "2-hop neighbours per 1-hop node; -1: model's");
+    manager->AddDefaultOption("GcnMatching.u",
+                              &options->u,
+                              "neighbours that make QES edges; -1: model's");
+    manager->AddDefaultOption(
+        "GcnMatching.threshold",
+        &options->threshold,
+        "GCN score to retrieve a pair; -1: model's (0.5)");
+    manager->AddDefaultOption("GcnMatching.min_pairs_per_image",
+                              &options->min_pairs_per_image,
+                              "best-scoring pairs every image keeps");
+    manager->AddDefaultOption(
+        "GcnMatching.descriptor_path",
+        &options->descriptor_path,
+        "imported global descriptors (.h5 | .npy | .txt)");
+    manager->AddDefaultOption("GcnMatching.num_threads",
+                              &options->num_threads,
+                              "threads for embedding and kNN (-1: all cores)");
+  };
+  spec.create = [](const GcnModelPairingOptions& options,
+                   const PairGeneratorContext& context)
+      -> std::unique_ptr<PairGenerator> {
+    return CreateGcnPairGenerator(options, context.database);
+  };
+  return spec;
 }
 
 }  // namespace colmap_gcn

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "feature/pair_generator_spec.h"
 #include "gcn/gcn_model.h"
 #include "gcn/gcn_pair_generator.h"
 #include "retrieval/knn.h"
@@ -55,5 +56,22 @@ EmbeddingMatrix ComputeModelEmbeddings(const GcnModel& model,
                                        const std::string& descriptor_path,
                                        int num_threads,
                                        std::vector<image_t>* image_ids);
+
+// The GCN generator: the model (or the default one), its embedding of the
+// database, and the QES settings (model's recommendation unless set).
+std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
+    const GcnModelPairingOptions& options, const Database& database);
+
+// A one-line warning when the GCN kept every candidate pair it scored: it
+// then chose nothing beyond the k1 nearest neighbours, which is what a
+// model does on images unlike its training scenes (all real photo sets
+// for the default model, docs/model_card.md), and on scenes with
+// duplicate structure it admits the pairs that fold models. "" otherwise.
+std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1);
+
+// --GcnMatching.pairing gcn (--GcnMatching.model_path, k1, k2, u,
+// threshold, min_pairs_per_image, descriptor_path, num_threads); its
+// generator's Warning() is GcnKeptEveryCandidateWarning.
+PairGeneratorSpec<GcnModelPairingOptions> GcnModelPairGeneratorSpec();
 
 }  // namespace colmap_gcn

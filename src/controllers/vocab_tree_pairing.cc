@@ -13,6 +13,7 @@
 #include "util/error.h"
 #include "util/file.h"
 #include "util/option_check.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -194,6 +195,33 @@ bool VocabTreePairGenerator::HasFinished() const {
 
 std::vector<ImagePair> VocabTreePairGenerator::Next() {
   return NextPairBlock(image_pairs_, options_.block_size, &pair_idx_);
+}
+
+PairGeneratorSpec<VocabTreePairingOptions> VocabTreePairGeneratorSpec() {
+  PairGeneratorSpec<VocabTreePairingOptions> spec;
+  spec.name = "vocab_tree";
+  spec.add_options = [](OptionManager* manager,
+                        VocabTreePairingOptions* options) {
+    manager->AddDefaultOption("GcnMatching.k",
+                              &options->k,
+                              "neighbours per image for knn | vocab_tree");
+    manager->AddDefaultOption(
+        "GcnMatching.vocab_tree_path",
+        &options->vocab_tree_path,
+        "vocabulary tree; empty: built from this database");
+  };
+  spec.create = [](const VocabTreePairingOptions& options,
+                   const PairGeneratorContext& context) {
+    ColmapRunnerOptions runner_options;
+    runner_options.log_path = context.colmap_log_path.empty()
+                                  ? context.database.Path() + ".colmap.log"
+                                  : context.colmap_log_path;
+    runner_options.verbose = context.verbose;
+    return std::make_unique<VocabTreePairGenerator>(
+        options, context.database, ColmapRunner(runner_options));
+  };
+  spec.depth = [](VocabTreePairingOptions* options) { return &options->k; };
+  return spec;
 }
 
 }  // namespace colmap_gcn

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "feature/pair_generator_spec.h"
 #include "feature/pairing.h"
 #include "scene/database.h"
 
@@ -86,5 +87,8 @@ class VocabTreePairGenerator : public PairGenerator {
   std::vector<ImagePair> image_pairs_;
   size_t pair_idx_ = 0;
 };
+
+// --GcnMatching.pairing vocab_tree (--GcnMatching.k, vocab_tree_path).
+PairGeneratorSpec<VocabTreePairingOptions> VocabTreePairGeneratorSpec();
 
 }  // namespace colmap_gcn

@@ -12,6 +12,7 @@
 
 #include "controllers/colmap_runner.h"
 #include "controllers/gcn_matching.h"
+#include "controllers/pair_generator_registry.h"
 #include "controllers/pair_matching.h"
 #include "evaluation/common_tracks.h"
 #include "evaluation/dataset.h"
@@ -350,17 +351,22 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
 
 std::unique_ptr<PairGenerator> BenchmarkRunner::CreateGenerator(
     const SceneContext& scene, const BenchmarkMethod& method) const {
-  std::vector<std::string> args = GcnMatchingArguments(
-      method, scene.images.size(), scene.oracle_pairs_path);
-  if (!method.IsOracle()) {
-    args.insert(args.end(),
-                options_.gcn_matching_args.begin(),
-                options_.gcn_matching_args.end());
-  }
+  const PairGeneratorRegistry& registry = PairGenerators();
   const Database database(scene.base_db);
-  return options_.pair_generator_factory
-             ? options_.pair_generator_factory(args, database)
-             : CreateBasicPairGenerator(args, database);
+  PairGeneratorContext context(database);
+  context.colmap_log_path = options_.gcn_matching.matching.colmap_log_path;
+  context.verbose = options_.gcn_matching.matching.verbose;
+  if (method.IsOracle()) {
+    PairGeneratorOptions oracle = registry.DefaultOptions();
+    oracle.Get<ImagePairsMatchingOptions>("imported").match_list_path =
+        scene.oracle_pairs_path;
+    return registry.Create("imported", oracle, context);
+  }
+  PairGeneratorOptions options = options_.gcn_matching.generators;
+  if (int* depth = registry.Depth(method.pairing, &options)) {
+    *depth = method.EffectiveK(scene.images.size());
+  }
+  return registry.Create(method.pairing, options, context);
 }
 
 JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
@@ -726,27 +732,6 @@ BenchmarkResults BenchmarkRunner::Run() {
 
 }  // namespace
 
-std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
-    const std::vector<std::string>& gcn_matching_args,
-    const Database& database) {
-  GcnMatchingOptions options;
-  for (size_t i = 0; i < gcn_matching_args.size(); i += 2) {
-    const std::string& name = gcn_matching_args[i];
-    if (i + 1 >= gcn_matching_args.size()) {
-      ThrowError("option ", name, " has no value");
-    }
-    const std::string& value = gcn_matching_args[i + 1];
-    if (name == "--GcnMatching.pairing") {
-      options.pairing = value;
-    } else if (name == "--GcnMatching.match_list_path") {
-      options.imported.match_list_path = value;
-    } else {
-      ThrowError("option ", name, " is not supported by this build");
-    }
-  }
-  return CreatePairGenerator(options, database);
-}
-
 void BenchmarkOptions::Check() const {
   CHECK_OPTION(datasets, !datasets.empty(), "name at least one dataset");
   CHECK_OPTION(methods, !methods.empty(), "name methods (or none)");
@@ -756,22 +741,13 @@ void BenchmarkOptions::Check() const {
   label_pair_filter.Check();
   CHECK_OPTION_NUM_THREADS(mapper_num_threads);
   CHECK_OPTION_GE(mapper_min_model_size, 0);
-  // Each method sets its own pairing and k.
-  for (size_t i = 0; i < gcn_matching_args.size(); ++i) {
-    const std::string& arg = gcn_matching_args[i];
-    const size_t equals = arg.find('=');
-    const std::string name = arg.substr(0, equals);
-    if (name != "--GcnMatching.pairing" && name != "--GcnMatching.k") continue;
-    const std::string value =
-        equals != std::string::npos        ? arg.substr(equals + 1)
-        : i + 1 < gcn_matching_args.size() ? gcn_matching_args[i + 1]
-                                           : "";
-    throw OptionError(&gcn_matching_args,
-                      name,
-                      "not be given to gcn_benchmark (each --methods entry "
-                      "sets it)",
-                      internal::FormatOptionValue(value));
+  // The options of every generator a method uses, before any work.
+  for (const BenchmarkMethod& method : ParseBenchmarkMethods(methods)) {
+    if (!method.IsOracle()) {
+      PairGenerators().Check(method.pairing, gcn_matching.generators);
+    }
   }
+  gcn_matching.matching.Check();
 }
 
 namespace {

@@ -1,34 +1,15 @@
 #pragma once
 
-#include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "controllers/gcn_matching.h"
 #include "evaluation/alignment.h"
 #include "evaluation/labels.h"
 #include "evaluation/pose_pair_filter.h"
 #include "evaluation/results.h"
-#include "feature/pairing.h"
-#include "scene/database.h"
 
 namespace colmap_gcn {
-
-// Builds a method's PairGenerator from its --GcnMatching.* arguments (see
-// GcnMatchingArguments). Throws Error when the method cannot be built in
-// this binary (the benchmark then reports it as unavailable).
-typedef std::function<std::unique_ptr<PairGenerator>(
-    const std::vector<std::string>& gcn_matching_args,
-    const Database& database)>
-    PairGeneratorFactory;
-
-// Handles only --GcnMatching.pairing and --GcnMatching.match_list_path and
-// calls CreatePairGenerator; any other option is an Error. The
-// gcn_benchmark command passes a factory that parses every option
-// gcn_matcher knows.
-std::unique_ptr<PairGenerator> CreateBasicPairGenerator(
-    const std::vector<std::string>& gcn_matching_args,
-    const Database& database);
 
 struct BenchmarkOptions {
   // Comma list of scene folders or synth:<family>:<n>[:seed].
@@ -65,9 +46,10 @@ struct BenchmarkOptions {
   std::vector<std::string> matching_args;
   std::vector<std::string> mapper_args;
 
-  // Extra --GcnMatching.* arguments for every method's generator (e.g.
-  // --GcnMatching.model_path for gcn); pairing and k come from the method.
-  std::vector<std::string> gcn_matching_args;
+  // Every method's generator options (e.g. --GcnMatching.model_path for
+  // gcn); pairing and k come from the method, the oracle's options are the
+  // defaults.
+  GcnMatchingOptions gcn_matching;
 
   // Show all of COLMAP's output.
   bool verbose = false;
@@ -78,9 +60,6 @@ struct BenchmarkOptions {
 
   // Real COLMAP binary ("" finds it, see ColmapRunner).
   std::string colmap_exe = "";
-
-  // Null: CreateBasicPairGenerator.
-  PairGeneratorFactory pair_generator_factory;
 
   // Recorded in the report.
   std::string command = "";

@@ -2,17 +2,32 @@
 
 #include <algorithm>
 
+#include "controllers/pair_generator_registry.h"
 #include "util/error.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
 namespace {
 
-// The option that sets the retrieval depth of the k-based pairings (the
-// retrieval module's flag); nullptr for pairings without k.
-const char* KOptionName(const std::string& pairing) {
-  if (pairing == "knn" || pairing == "vocab_tree") return "--GcnMatching.k";
-  return nullptr;
+// "<name>" or "<name>:<k>".
+std::string MethodSyntax(const std::string& name) {
+  return PairGenerators().TakesDepth(name) ? name + ":<k>" : name;
+}
+
+// The generators offered as methods, listed as the paper's tables order
+// them: the baselines, then the default generator (the GCN), then the
+// oracle.
+std::vector<std::string> MethodNames() {
+  const PairGeneratorRegistry& registry = PairGenerators();
+  const std::vector<std::string> names = registry.Names();
+  std::vector<std::string> methods;
+  for (size_t i = 1; i < names.size(); ++i) {
+    if (registry.IsBenchmarkMethod(names[i])) methods.push_back(names[i]);
+  }
+  if (registry.IsBenchmarkMethod(names.front())) {
+    methods.push_back(names.front());
+  }
+  return methods;
 }
 
 }  // namespace
@@ -31,20 +46,30 @@ BenchmarkMethod ParseBenchmarkMethod(const std::string& spec) {
   method.spec = spec;
   const std::vector<std::string> fields = StringSplit(spec, ":");
   method.pairing = fields[0];
-  static const std::vector<std::string> kPairings = {
-      "exhaustive", "knn", "vocab_tree", "gcn", "oracle"};
-  if (!method.pairing.empty() &&
-      std::find(kPairings.begin(), kPairings.end(), method.pairing) ==
-          kPairings.end()) {
+  const std::vector<std::string> names = MethodNames();
+  if (!method.pairing.empty() && !method.IsOracle() &&
+      std::find(names.begin(), names.end(), method.pairing) == names.end()) {
+    std::vector<std::string> choices;
+    for (const std::string& name : names) choices.push_back(MethodSyntax(name));
+    choices.push_back("oracle");
     ThrowError("bad method \"",
                spec,
-               "\" in --methods: must be one of "
-               "exhaustive|knn:<k>|vocab_tree:<k>|gcn|oracle");
+               "\" in --methods: must be one of ",
+               StringJoin(choices, "|"));
   }
-  const bool k_based = KOptionName(method.pairing) != nullptr;
+  const bool k_based = !method.IsOracle() && !method.pairing.empty() &&
+                       PairGenerators().TakesDepth(method.pairing);
   if (fields.size() > 2 || (fields.size() == 2 && !k_based)) {
-    ThrowError(
-        "bad method \"", spec, "\": only knn:<k> and vocab_tree:<k> take a k");
+    std::vector<std::string> k_methods;
+    for (const std::string& name : names) {
+      if (PairGenerators().TakesDepth(name))
+        k_methods.push_back(MethodSyntax(name));
+    }
+    ThrowError("bad method \"",
+               spec,
+               "\": only ",
+               StringJoin(k_methods, " and "),
+               " take a k");
   }
   if (k_based) {
     if (fields.size() != 2) {
@@ -80,24 +105,6 @@ std::vector<BenchmarkMethod> ParseBenchmarkMethods(
   }
   if (methods.empty()) ThrowError("--methods names no method");
   return methods;
-}
-
-std::vector<std::string> GcnMatchingArguments(
-    const BenchmarkMethod& method,
-    size_t num_images,
-    const std::string& oracle_pairs_path) {
-  if (method.IsOracle()) {
-    return {"--GcnMatching.pairing",
-            "imported",
-            "--GcnMatching.match_list_path",
-            oracle_pairs_path};
-  }
-  std::vector<std::string> args = {"--GcnMatching.pairing", method.pairing};
-  if (const char* k_option = KOptionName(method.pairing)) {
-    args.push_back(k_option);
-    args.push_back(std::to_string(method.EffectiveK(num_images)));
-  }
-  return args;
 }
 
 }  // namespace colmap_gcn

@@ -5,14 +5,14 @@
 
 namespace colmap_gcn {
 
-// One --methods entry: "exhaustive", "knn:25", "vocab_tree:25", "gcn",
-// "oracle". Every method becomes a PairGenerator through
-// CreatePairGenerator's options (--GcnMatching.*); the oracle is imported
-// pairs (exactly the labelled matchable pairs).
+// One --methods entry: a registered pair generator (PairGenerators()),
+// "<name>:<k>" for those that take a retrieval depth ("knn:25",
+// "vocab_tree:25"), or "oracle": imported pairs, exactly the labelled
+// matchable ones.
 struct BenchmarkMethod {
   std::string spec;     // as given, e.g. "knn:25"
-  std::string pairing;  // --GcnMatching.pairing value
-  int k = 0;            // retrieval depth for knn / vocab_tree, else 0
+  std::string pairing;  // generator name, or "oracle"
+  int k = 0;            // retrieval depth of "<name>:<k>", else 0
 
   bool IsOracle() const { return pairing == "oracle"; }
   // A folder-safe name ("knn-25").
@@ -28,12 +28,5 @@ BenchmarkMethod ParseBenchmarkMethod(const std::string& spec);
 // "none" gives no methods: scenes are only extracted and labelled.
 std::vector<BenchmarkMethod> ParseBenchmarkMethods(
     const std::string& comma_list);
-
-// The --GcnMatching.* arguments that select the method (without a program
-// name). oracle_pairs_path is the labelled pairs file the oracle imports.
-std::vector<std::string> GcnMatchingArguments(
-    const BenchmarkMethod& method,
-    size_t num_images,
-    const std::string& oracle_pairs_path);
 
 }  // namespace colmap_gcn

@@ -1,5 +1,6 @@
 #include "exe/gcn_benchmark.h"
 
+#include <algorithm>
 #include <iostream>
 
 #include "controllers/gcn_matching.h"
@@ -13,29 +14,30 @@
 namespace colmap_gcn {
 namespace {
 
-// The --GcnMatching.* arguments parsed and checked as gcn_matcher would.
-GcnMatchingOptions ParseGcnMatchingArguments(
-    const std::vector<std::string>& gcn_matching_args) {
-  GcnMatchingOptions options;
-  OptionManager manager("gcn_benchmark", "");
-  AddGcnMatchingOptions(&manager, &options);
-  std::vector<std::string> args = {"gcn_benchmark"};
-  args.insert(args.end(), gcn_matching_args.begin(), gcn_matching_args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : args) argv.push_back(arg.data());
-  manager.Parse(static_cast<int>(argv.size()), argv.data());
-  manager.Check([&] { options.Check(); });
-  return options;
+// Each --methods entry chooses the generator and its depth (knn:25): the
+// flags for them are refused rather than silently overridden.
+void CheckNoMethodFlags(const OptionManager& manager,
+                        GcnMatchingOptions* options) {
+  std::vector<std::string> flags = {"--GcnMatching.pairing"};
+  for (const std::string& name : PairGenerators().Names()) {
+    const int* depth = PairGenerators().Depth(name, &options->generators);
+    const std::string flag = depth ? manager.FlagName(depth) : "";
+    if (!flag.empty() &&
+        std::find(flags.begin(), flags.end(), flag) == flags.end()) {
+      flags.push_back(flag);
+    }
+  }
+  for (const std::string& flag : flags) {
+    if (!manager.IsGiven(flag.substr(2))) continue;
+    ThrowError(flag,
+               " must not be given to gcn_benchmark (each --methods entry "
+               "sets it) (got \"",
+               manager.GivenValue(flag.substr(2)),
+               "\")");
+  }
 }
 
 }  // namespace
-
-std::unique_ptr<PairGenerator> CreatePairGeneratorFromArguments(
-    const std::vector<std::string>& gcn_matching_args,
-    const Database& database) {
-  return CreatePairGenerator(ParseGcnMatchingArguments(gcn_matching_args),
-                             database);
-}
 
 int RunGcnBenchmark(int argc, char** argv) {
   BenchmarkOptions options;
@@ -90,7 +92,7 @@ int RunGcnBenchmark(int argc, char** argv) {
   manager.AddPassThroughPrefix("SiftExtraction.");
   manager.AddPassThroughPrefix("SiftMatching.");
   manager.AddPassThroughPrefix("Mapper.");
-  manager.AddPassThroughPrefix("GcnMatching.");
+  AddGcnMatchingOptions(&manager, &options.gcn_matching);
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
@@ -99,11 +101,9 @@ int RunGcnBenchmark(int argc, char** argv) {
       ArgumentsWithPrefix(args, {"ImageReader.", "SiftExtraction."});
   options.matching_args = ArgumentsWithPrefix(args, {"SiftMatching."});
   options.mapper_args = ArgumentsWithPrefix(args, {"Mapper."});
-  options.gcn_matching_args = ArgumentsWithPrefix(args, {"GcnMatching."});
-  options.pair_generator_factory = &CreatePairGeneratorFromArguments;
+  CheckNoMethodFlags(manager, &options.gcn_matching);
   manager.Check([&] { options.Check(); });
   CheckSiftMatchingArguments(options.matching_args);
-  ParseGcnMatchingArguments(options.gcn_matching_args);
   std::vector<std::string> command = {"colmap"};
   for (int i = 0; i < argc; ++i) command.push_back(ShellQuote(argv[i]));
   options.command = StringJoin(command, " ");

@@ -8,7 +8,8 @@
 
 namespace colmap_gcn {
 
-// Registers the --GcnMatching.* options (and passes --SiftMatching.* on).
+// Registers the --GcnMatching.* options: --GcnMatching.pairing, every
+// registered generator's (PairGenerators()) and the matching ones.
 void AddGcnMatchingOptions(OptionManager* manager, GcnMatchingOptions* options);
 
 // Throws Error naming the option when a --SiftMatching.* value we read

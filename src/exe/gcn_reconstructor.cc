@@ -44,6 +44,7 @@ int RunGcnReconstructor(int argc, char** argv) {
   manager.AddRequiredOption("image_path", &image_path);
   manager.AddRequiredOption("workspace_path", &workspace_path);
   AddGcnMatchingOptions(&manager, &matching_options);
+  manager.AddPassThroughPrefix("SiftMatching.");
   manager.AddPassThroughPrefix("ImageReader.");
   manager.AddPassThroughPrefix("SiftExtraction.");
   manager.AddPassThroughPrefix("Mapper.");

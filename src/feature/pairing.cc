@@ -7,6 +7,7 @@
 #include "feature/pairs_io.h"
 #include "util/error.h"
 #include "util/option_check.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -155,6 +156,34 @@ bool ImportedPairGenerator::HasFinished() const {
 
 std::vector<ImagePair> ImportedPairGenerator::Next() {
   return NextPairBlock(image_pairs_, options_.block_size, &pair_idx_);
+}
+
+PairGeneratorSpec<ExhaustiveMatchingOptions> ExhaustivePairGeneratorSpec() {
+  PairGeneratorSpec<ExhaustiveMatchingOptions> spec;
+  spec.name = "exhaustive";
+  spec.create = [](const ExhaustiveMatchingOptions& options,
+                   const PairGeneratorContext& context) {
+    return std::make_unique<ExhaustivePairGenerator>(options, context.database);
+  };
+  return spec;
+}
+
+PairGeneratorSpec<ImagePairsMatchingOptions> ImportedPairGeneratorSpec() {
+  PairGeneratorSpec<ImagePairsMatchingOptions> spec;
+  spec.name = "imported";
+  spec.add_options = [](OptionManager* manager,
+                        ImagePairsMatchingOptions* options) {
+    manager->AddDefaultOption("GcnMatching.match_list_path",
+                              &options->match_list_path,
+                              "pairs file for pairing=imported");
+  };
+  spec.create = [](const ImagePairsMatchingOptions& options,
+                   const PairGeneratorContext& context) {
+    return std::make_unique<ImportedPairGenerator>(options, context.database);
+  };
+  // A user's pairs file; gcn_benchmark's oracle imports the labels.
+  spec.benchmark_method = false;
+  return spec;
 }
 
 }  // namespace colmap_gcn

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "feature/pair_generator_spec.h"
 #include "scene/database.h"
 #include "util/types.h"
 
@@ -45,6 +46,14 @@ class PairGenerator {
 
   // Drains the generator from the start: every pair exactly once.
   std::vector<ImagePair> AllPairs();
+
+  // One score per pair of AllPairs(), in its order, from generators that
+  // score pairs (the pairs file's third column); empty otherwise.
+  virtual std::vector<float> Scores() const { return {}; }
+
+  // A one-line note for users about the pairs chosen; "" when there is
+  // none.
+  virtual std::string Warning() const { return ""; }
 };
 
 // The next block of a generator's precomputed pair list, pairs[*pair_idx,
@@ -98,5 +107,10 @@ class ImportedPairGenerator : public PairGenerator {
   std::vector<ImagePair> image_pairs_;
   size_t pair_idx_ = 0;
 };
+
+// --GcnMatching.pairing exhaustive and imported
+// (--GcnMatching.match_list_path).
+PairGeneratorSpec<ExhaustiveMatchingOptions> ExhaustivePairGeneratorSpec();
+PairGeneratorSpec<ImagePairsMatchingOptions> ImportedPairGeneratorSpec();
 
 }  // namespace colmap_gcn

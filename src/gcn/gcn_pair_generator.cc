@@ -159,4 +159,11 @@ std::vector<ImagePair> GcnPairGenerator::Next() {
   return block;
 }
 
+std::vector<float> GcnPairGenerator::Scores() const {
+  std::vector<float> scores;
+  scores.reserve(pairs_.size());
+  for (const ScoredImagePair& pair : pairs_) scores.push_back(pair.score);
+  return scores;
+}
+
 }  // namespace colmap_gcn

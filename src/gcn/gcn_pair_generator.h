@@ -68,6 +68,7 @@ class GcnPairGenerator : public PairGenerator {
   void Reset() override;
   bool HasFinished() const override;
   std::vector<ImagePair> Next() override;
+  std::vector<float> Scores() const override;
 
   // The selected pairs with their scores, in yield order.
   const std::vector<ScoredImagePair>& ScoredPairs() const { return pairs_; }

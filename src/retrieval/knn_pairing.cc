@@ -5,6 +5,7 @@
 
 #include "util/error.h"
 #include "util/option_check.h"
+#include "util/option_manager.h"
 
 namespace colmap_gcn {
 
@@ -74,6 +75,33 @@ bool KnnPairGenerator::HasFinished() const {
 
 std::vector<ImagePair> KnnPairGenerator::Next() {
   return NextPairBlock(image_pairs_, options_.block_size, &pair_idx_);
+}
+
+PairGeneratorSpec<KnnPairingOptions> KnnPairGeneratorSpec() {
+  PairGeneratorSpec<KnnPairingOptions> spec;
+  spec.name = "knn";
+  spec.add_options = [](OptionManager* manager, KnnPairingOptions* options) {
+    manager->AddDefaultOption("GcnMatching.k",
+                              &options->k,
+                              "neighbours per image for knn | vocab_tree");
+    manager->AddDefaultOption("GcnMatching.embedding_path",
+                              &options->descriptors.embedding_path,
+                              "trained VLAD model (gcn_embedding_trainer); "
+                              "empty: trained on this database");
+    manager->AddDefaultOption(
+        "GcnMatching.descriptor_path",
+        &options->descriptors.descriptor_path,
+        "imported global descriptors (.h5 | .npy | .txt)");
+    manager->AddDefaultOption("GcnMatching.num_threads",
+                              &options->num_threads,
+                              "threads for embedding and kNN (-1: all cores)");
+  };
+  spec.create = [](const KnnPairingOptions& options,
+                   const PairGeneratorContext& context) {
+    return std::make_unique<KnnPairGenerator>(options, context.database);
+  };
+  spec.depth = [](KnnPairingOptions* options) { return &options->k; };
+  return spec;
 }
 
 }  // namespace colmap_gcn

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "feature/pair_generator_spec.h"
 #include "feature/pairing.h"
 #include "retrieval/global_descriptors.h"
 #include "retrieval/knn.h"
@@ -61,5 +62,9 @@ class KnnPairGenerator : public PairGenerator {
   std::vector<ImagePair> image_pairs_;
   size_t pair_idx_ = 0;
 };
+
+// --GcnMatching.pairing knn (--GcnMatching.k, embedding_path,
+// descriptor_path, num_threads).
+PairGeneratorSpec<KnnPairingOptions> KnnPairGeneratorSpec();
 
 }  // namespace colmap_gcn

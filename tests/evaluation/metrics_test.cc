@@ -131,11 +131,9 @@ TEST(BenchmarkMethod, ParsesSpecsAndCapsK) {
   EXPECT_EQ(methods[1].EffectiveK(11), 10);
   EXPECT_EQ(methods[1].EffectiveK(100), 25);
   EXPECT_TRUE(methods[4].IsOracle());
-  EXPECT_EQ(GcnMatchingArguments(methods[4], 10, "o.txt"),
-            (std::vector<std::string>{"--GcnMatching.pairing",
-                                      "imported",
-                                      "--GcnMatching.match_list_path",
-                                      "o.txt"}));
+  EXPECT_EQ(methods[3].k, 0);
+  // A user's pairs file is not a method: the oracle imports the labels.
+  EXPECT_THROW(ParseBenchmarkMethod("imported"), Error);
   EXPECT_THROW(ParseBenchmarkMethod("knn"), Error);
   EXPECT_THROW(ParseBenchmarkMethod("knn:0"), Error);
   EXPECT_THROW(ParseBenchmarkMethod("exhaustive:3"), Error);

@@ -72,6 +72,55 @@ TEST(OptionManager, RejectsUnknownMissingAndMalformed) {
   EXPECT_THROW(manager.Parse(malformed.argc(), malformed.argv()), Error);
 }
 
+enum class Color { kRed, kDarkBlue };
+const EnumNames<Color> kColorNames = {{"red", Color::kRed},
+                                      {"dark_blue", Color::kDarkBlue}};
+
+TEST(OptionManager, EnumOptionsParseOnceFromTheirNames) {
+  Color color = Color::kRed;
+  OptionManager manager("test", "summary");
+  manager.AddEnumOption("Paint.color", &color, kColorNames, "the colour");
+  Argv defaults({"test"});
+  ASSERT_TRUE(manager.Parse(defaults.argc(), defaults.argv()));
+  EXPECT_EQ(color, Color::kRed);
+  Argv given({"test", "--Paint.color", "dark_blue"});
+  ASSERT_TRUE(manager.Parse(given.argc(), given.argv()));
+  EXPECT_EQ(color, Color::kDarkBlue);
+  EXPECT_TRUE(manager.IsGiven("Paint.color"));
+  EXPECT_EQ(manager.GivenValue("Paint.color"), "dark_blue");
+  EXPECT_EQ(manager.FlagName(&color), "--Paint.color");
+  // The help lists the choices and shows the default's name.
+  EXPECT_NE(manager.Help().find("red|dark_blue"), std::string::npos);
+  Argv bad({"test", "--Paint.color", "green"});
+  try {
+    manager.Parse(bad.argc(), bad.argv());
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "--Paint.color must be one of red|dark_blue (got \"green\")");
+  }
+}
+
+TEST(OptionManager, OneFlagBoundToSeveralFields) {
+  int knn_k = 25;
+  int tree_k = 30;
+  OptionManager manager("test", "summary");
+  manager.AddDefaultOption("GcnMatching.k", &knn_k, "neighbours");
+  manager.AddDefaultOption("GcnMatching.k", &tree_k, "ignored help");
+  Argv defaults({"test"});
+  ASSERT_TRUE(manager.Parse(defaults.argc(), defaults.argv()));
+  // Unset, each field keeps its own default.
+  EXPECT_EQ(knn_k, 25);
+  EXPECT_EQ(tree_k, 30);
+  EXPECT_FALSE(manager.IsGiven("GcnMatching.k"));
+  Argv given({"test", "--GcnMatching.k=7"});
+  ASSERT_TRUE(manager.Parse(given.argc(), given.argv()));
+  EXPECT_EQ(knn_k, 7);
+  EXPECT_EQ(tree_k, 7);
+  EXPECT_EQ(manager.FlagName(&tree_k), "--GcnMatching.k");
+  EXPECT_EQ(manager.GivenValue("GcnMatching.k"), "7");
+}
+
 }  // namespace
 }  // namespace colmap_gcn
 

@@ -1,0 +1,180 @@
+#include "controllers/pair_generator_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../retrieval/retrieval_test_utils.h"
+#include "controllers/gcn_matching.h"
+#include "controllers/gcn_model_pairing.h"
+#include "controllers/vocab_tree_pairing.h"
+#include "feature/pairing.h"
+#include "retrieval/knn_pairing.h"
+#include "test_utils.h"
+#include "util/file.h"
+#include "util/option_check.h"
+#include "util/option_manager.h"
+
+namespace colmap_gcn {
+namespace {
+
+// A database of 6 images with SIFT-like descriptors.
+class PairGeneratorRegistryTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    database_path_ = JoinPaths(dir_.Path(), "database.db");
+    std::vector<std::pair<std::string, FeatureDescriptors>> images;
+    for (int i = 0; i < 6; ++i) {
+      images.emplace_back("image" + std::to_string(i) + ".jpg",
+                          test::RandomDescriptors(200, 8, 20 + i));
+    }
+    test::CreateDescriptorDatabase(database_path_, images);
+  }
+
+  TemporaryDirectory dir_{"colmap_gcn_registry"};
+  std::string database_path_;
+};
+
+TEST(PairGeneratorRegistry, NamesTheBuiltInGeneratorsGcnFirst) {
+  const std::vector<std::string> names = PairGenerators().Names();
+  ASSERT_GE(names.size(), 5u);
+  EXPECT_EQ(names.front(), "gcn");
+  for (const char* name : {"exhaustive", "imported", "knn", "vocab_tree"}) {
+    EXPECT_TRUE(PairGenerators().Has(name)) << name;
+  }
+  EXPECT_EQ(GcnMatchingOptions().pairing, "gcn");
+}
+
+TEST(PairGeneratorRegistry, UnknownNameIsOneLineListingTheKnownNames) {
+  const PairGeneratorOptions options = PairGenerators().DefaultOptions();
+  try {
+    PairGenerators().Check("bogus", options);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_NE(message.find("\"bogus\""), std::string::npos) << message;
+    for (const std::string& name : PairGenerators().Names()) {
+      EXPECT_NE(message.find(name), std::string::npos) << message;
+    }
+  }
+  // Through the options a command checks: the flag's own error.
+  GcnMatchingOptions matching;
+  matching.pairing = "bogus";
+  test::ExpectErrorContaining([&] { matching.Check(); },
+                              "pairing must be one of gcn|exhaustive|");
+}
+
+TEST(PairGeneratorRegistry, DefaultOptionsAreValidExceptImportedsFile) {
+  const PairGeneratorOptions options = PairGenerators().DefaultOptions();
+  for (const std::string& name : PairGenerators().Names()) {
+    if (name == "imported") {
+      test::ExpectErrorContaining(
+          [&] { PairGenerators().Check(name, options); },
+          "match_list_path must name a pairs file");
+    } else {
+      EXPECT_NO_THROW(PairGenerators().Check(name, options)) << name;
+    }
+  }
+}
+
+TEST(PairGeneratorRegistry, TypedOptionsAndDepth) {
+  PairGeneratorOptions options = PairGenerators().DefaultOptions();
+  options.Get<KnnPairingOptions>("knn").k = 7;
+  EXPECT_EQ(*PairGenerators().Depth("knn", &options), 7);
+  EXPECT_EQ(PairGenerators().Depth("knn", &options),
+            &options.Get<KnnPairingOptions>("knn").k);
+  EXPECT_EQ(PairGenerators().Depth("vocab_tree", &options),
+            &options.Get<VocabTreePairingOptions>("vocab_tree").k);
+  EXPECT_EQ(PairGenerators().Depth("gcn", &options), nullptr);
+  EXPECT_FALSE(PairGenerators().IsBenchmarkMethod("imported"));
+  // Asking for the wrong type is an error, not a bad cast.
+  EXPECT_THROW(options.Get<KnnPairingOptions>("gcn"), Error);
+}
+
+// Every registered flag on one command line, shared flags set everywhere.
+TEST(PairGeneratorRegistry, FlagsBindEveryGeneratorsOptions) {
+  GcnMatchingOptions options;
+  OptionManager manager("test", "");
+  manager.AddDefaultOption("GcnMatching.pairing", &options.pairing);
+  PairGenerators().AddOptions(&manager, &options.generators);
+  std::vector<std::string> args = {"test",
+                                   "--GcnMatching.pairing",
+                                   "knn",
+                                   "--GcnMatching.k",
+                                   "9",
+                                   "--GcnMatching.num_threads",
+                                   "2",
+                                   "--GcnMatching.k1",
+                                   "40"};
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  ASSERT_TRUE(manager.Parse(static_cast<int>(argv.size()), argv.data()));
+  const PairGeneratorOptions& generators = options.generators;
+  EXPECT_EQ(options.pairing, "knn");
+  EXPECT_EQ(generators.Get<KnnPairingOptions>("knn").k, 9);
+  EXPECT_EQ(generators.Get<VocabTreePairingOptions>("vocab_tree").k, 9);
+  EXPECT_EQ(generators.Get<KnnPairingOptions>("knn").num_threads, 2);
+  EXPECT_EQ(generators.Get<GcnModelPairingOptions>("gcn").num_threads, 2);
+  EXPECT_EQ(generators.Get<GcnModelPairingOptions>("gcn").k1, 40);
+  EXPECT_TRUE(manager.IsGiven("GcnMatching.k"));
+  EXPECT_FALSE(manager.IsGiven("GcnMatching.k2"));
+  // A field's error names the flag bound to it.
+  options.generators.Get<KnnPairingOptions>("knn").k = 0;
+  test::ExpectErrorContaining([&] { manager.Check([&] { options.Check(); }); },
+                              "--GcnMatching.k must be >= 1 (got 0)");
+}
+
+// Each generator that needs no COLMAP creates from its defaults (imported
+// from a pairs file) and yields valid pairs of the database's images.
+TEST_F(PairGeneratorRegistryTest, EachGeneratorCreatesFromDefaultOptions) {
+  const Database database(database_path_);
+  PairGeneratorContext context(database);
+  PairGeneratorOptions options = PairGenerators().DefaultOptions();
+  const std::string pairs_path = JoinPaths(dir_.Path(), "pairs.txt");
+  WriteFileAtomically(pairs_path,
+                      "image0.jpg image1.jpg\nimage2.jpg image5.jpg\n");
+  options.Get<ImagePairsMatchingOptions>("imported").match_list_path =
+      pairs_path;
+  for (const std::string& name : PairGenerators().Names()) {
+    // Runs COLMAP: PairGeneratorRegistryTest.VocabTreeCreatesWithColmap.
+    if (name == "vocab_tree") continue;
+    if (name == "gcn" && DefaultGcnModelPath().empty()) {
+      ADD_FAILURE() << "no default model in the source tree";
+      continue;
+    }
+    const std::vector<ImagePair> pairs =
+        PairGenerators().Create(name, options, context)->AllPairs();
+    EXPECT_FALSE(pairs.empty()) << name;
+    for (const auto& [a, b] : pairs) {
+      EXPECT_NE(a, b) << name;
+      EXPECT_GE(std::min(a, b), 1u) << name;
+      EXPECT_LE(std::max(a, b), 6u) << name;
+    }
+    if (name == "exhaustive") {
+      EXPECT_EQ(pairs.size(), 15u);
+    }
+    if (name == "imported") {
+      EXPECT_EQ(pairs.size(), 2u);
+    }
+  }
+}
+
+TEST_F(PairGeneratorRegistryTest, VocabTreeCreatesWithColmap) {
+  if (test::RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
+  const Database database(database_path_);
+  PairGeneratorContext context(database);
+  context.colmap_log_path = JoinPaths(dir_.Path(), "colmap.log");
+  PairGeneratorOptions options = PairGenerators().DefaultOptions();
+  options.Get<VocabTreePairingOptions>("vocab_tree").k = 2;
+  const std::vector<ImagePair> pairs =
+      PairGenerators().Create("vocab_tree", options, context)->AllPairs();
+  EXPECT_GE(pairs.size(), 6u);
+  EXPECT_LE(pairs.size(), 12u);
+}
+
+}  // namespace
+}  // namespace colmap_gcn
