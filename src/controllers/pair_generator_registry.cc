@@ -3,6 +3,7 @@
 #include "controllers/gcn_model_pairing.h"
 #include "controllers/vocab_tree_pairing.h"
 #include "feature/pairing.h"
+#include "feature/sequential_pairing.h"
 #include "retrieval/knn_pairing.h"
 #include "util/string.h"
 
@@ -96,6 +97,7 @@ const PairGeneratorRegistry& PairGenerators() {
     generators.Register(ImportedPairGeneratorSpec());
     generators.Register(KnnPairGeneratorSpec());
     generators.Register(VocabTreePairGeneratorSpec());
+    generators.Register(SequentialPairGeneratorSpec());
     return generators;
   }();
   return registry;
