@@ -74,6 +74,11 @@ int RunGcnTrain(int argc, char** argv) {
                            &aggregation,
                            "symmetric (paper: L^-1/2 A L^-1/2) | row "
                            "(gcn_clustering: neighbour mean)");
+  std::string feature_scaling = "none";
+  manager.AddDefaultOption("GcnTraining.feature_scaling",
+                           &feature_scaling,
+                           "none (node features e_v - e_q) | query (divided "
+                           "by the query's RMS 1-hop distance: scale-free)");
   manager.AddDefaultOption("GcnTraining.initialization",
                            &training.initialization,
                            "xavier | distance_prior (docs/gcn.md)");
@@ -115,12 +120,16 @@ int RunGcnTrain(int argc, char** argv) {
                              [](int epoch) { return epoch >= 0; }),
                  "be a comma list of epochs >= 0");
     CHECK_OPTION_ONE_OF(aggregation, "symmetric", "row");
+    CHECK_OPTION_ONE_OF(feature_scaling, "none", "query");
     // The number of threads first: the VLAD's copy is not a flag.
     CHECK_OPTION_NUM_THREADS(training.num_threads);
     options.Check();
   });
   training.aggregation = aggregation == "row" ? GcnAggregation::kRowNormalized
                                               : GcnAggregation::kSymmetric;
+  training.feature_scaling = feature_scaling == "query"
+                                 ? QesFeatureScaling::kQueryScale
+                                 : QesFeatureScaling::kNone;
 
   const std::vector<std::string> validation_names =
       SplitCommaList(validation_scenes);
@@ -155,9 +164,8 @@ int RunGcnTrain(int argc, char** argv) {
                             training.num_threads),
         kMaxFixedK,
         training.num_threads);
-    std::printf(
-        "\nHeld-out scenes\n\n%s",
-        FormatFixedKComparison(comparisons, model.info.threshold).c_str());
+    std::printf("\nHeld-out scenes\n\n%s",
+                FormatFixedKComparison(comparisons).c_str());
   }
   return 0;
 }

@@ -309,6 +309,7 @@ GcnModel GcnTrainer::Train(
   GcnShape shape = o.shape;
   shape.input_dim = dim;
   GcnModel model = InitializeGcnModel(shape, o.aggregation, o.seed);
+  model.feature_scaling = o.feature_scaling;
   const bool prior = o.initialization == "distance_prior";
   BuilderPool pool(prepared, threads);
 
@@ -325,12 +326,14 @@ GcnModel GcnTrainer::Train(
         0, static_cast<int>(sampled.size()), threads, [&](int s, int t) {
           QuerySubgraph subgraph;
           pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
-          const auto x = QesFeatures(
-              subgraph, prepared[sampled[s].scene].scene->embeddings);
-          const Eigen::MatrixXd xd = x.cast<double>();
+          const Eigen::MatrixXd xd =
+              QesFeatures(subgraph,
+                          prepared[sampled[s].scene].scene->embeddings,
+                          o.feature_scaling)
+                  .cast<double>();
           sums[s] = xd.colwise().sum().transpose();
           squares[s] = xd.array().square().colwise().sum().transpose();
-          counts[s] = x.rows();
+          counts[s] = xd.rows();
         });
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim);
     Eigen::VectorXd square = Eigen::VectorXd::Zero(dim);
@@ -423,8 +426,8 @@ GcnModel GcnTrainer::Train(
 
   // Optimiser state.
   std::vector<float>& params = model.params.Values();
-  std::vector<float> state1(params.size(), 0.f);
-  std::vector<float> state2(params.size(), 0.f);
+  std::vector<float> state1(params.size());  // zeros
+  std::vector<float> state2(params.size());
   int64_t step = 0;
   std::vector<GcnParameters<float>> sample_grads(
       std::min<size_t>(o.batch_size, train_samples.size()),
@@ -586,6 +589,10 @@ GcnModel GcnTrainer::Train(
           << " initialisation; " << train_samples.size() << " train / "
           << val_samples.size() << " val subgraphs; best epoch " << best_epoch
           << " of " << history_.size();
+    if (o.feature_scaling != QesFeatureScaling::kNone) {
+      notes << "; " << QesFeatureScalingName(o.feature_scaling)
+            << " feature scaling";
+    }
     if (best_epoch > 0 && !val_samples.empty()) {
       notes << " (val " << FormatStats(history_[best_epoch - 1].validation)
             << ")";

@@ -31,6 +31,8 @@ struct GcnTrainingOptions {
   // Network; shape.input_dim is taken from the embeddings.
   GcnShape shape;
   GcnAggregation aggregation = GcnAggregation::kSymmetric;
+  // Per-query scaling of the node features (stored in the model).
+  QesFeatureScaling feature_scaling = QesFeatureScaling::kNone;
 
   // "xavier" (gcn_clustering's random start) or "distance_prior": start
   // from the context-aware distance classifier (InitializeDistancePrior)

@@ -466,9 +466,14 @@ float SelectGcnThreshold(const GcnModel& model,
   }
   float best_threshold = model.info.threshold;
   double best_f = -1;
-  // Integer steps so the grid is exact and the choice reproducible.
-  for (int step = 1; step <= 19; ++step) {
-    const float threshold = 0.05f * step;
+  // Steps of 0.05, refined towards both ends: a model's scores on an
+  // unfamiliar collection can crowd near 0 or 1.
+  std::vector<float> grid = {0.01f, 0.02f};
+  for (int step = 1; step <= 19; ++step) grid.push_back(0.05f * step);
+  for (float threshold : {0.97f, 0.98f, 0.99f, 0.995f, 0.999f}) {
+    grid.push_back(threshold);
+  }
+  for (const float threshold : grid) {
     double sum_f = 0;
     for (size_t s = 0; s < scenes.size(); ++s) {
       sum_f +=
