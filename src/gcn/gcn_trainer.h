@@ -22,6 +22,9 @@ struct GcnTrainingScene {
   // Labelled pairs whose images share nothing (no surface, no 3D point): a
   // match between them can only be wrong. Evaluation only; may be empty.
   std::vector<std::pair<int, int>> unrelated_pairs;
+  // A collection of scenes ("a+b"): the part each row comes from, so pairs
+  // across parts can be counted. Empty for a single scene.
+  std::vector<int> part_of_row;
 };
 
 // Prints the line to stdout (the default training log).

@@ -140,8 +140,11 @@ GcnTrainingScene MergeTrainingScenes(
   }
   merged.embeddings.resize(num_rows, dim);
   Eigen::Index offset = 0;
-  for (const auto& part : parts) {
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const GcnTrainingScene& part = parts[p];
     const int first = static_cast<int>(offset);
+    merged.part_of_row.insert(
+        merged.part_of_row.end(), part.embeddings.rows(), static_cast<int>(p));
     merged.embeddings.middleRows(offset, part.embeddings.rows()) =
         part.embeddings;
     for (const auto& [i, j] : part.positive_pairs) {
@@ -323,6 +326,15 @@ PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
   for (const uint64_t key : selected) {
     scores.num_true_positives += positives.count(key);
     scores.num_unrelated += unrelated.count(key);
+  }
+  if (!scene.part_of_row.empty()) {
+    for (const auto& [i, j] : pairs) {
+      // Each distinct pair once: its key leaves the set when counted.
+      if (i != j && scene.part_of_row[i] != scene.part_of_row[j] &&
+          selected.erase(PairKey(i, j)) > 0) {
+        ++scores.num_cross_scene;
+      }
+    }
   }
   return scores;
 }

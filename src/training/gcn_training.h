@@ -83,6 +83,8 @@ struct PairSetScores {
   size_t num_positives = 0;  // matchable pairs in the scene
   // Selected pairs among the scene's unrelated_pairs (wrong pairs).
   size_t num_unrelated = 0;
+  // Selected pairs across the parts of a collection (unrelated photos).
+  size_t num_cross_scene = 0;
   double Precision() const;
   double Recall() const;
   double F() const;

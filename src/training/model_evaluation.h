@@ -22,7 +22,8 @@ struct FixedKComparison {
   std::string scene;
   size_t num_unrelated_pairs = 0;  // the scene's pairs that share nothing
   int num_images = 0;
-  float threshold = 0.5f;  // the model's decision threshold
+  bool is_collection = false;  // a collection of scenes ("a+b")
+  float threshold = 0.5f;      // the model's decision threshold
   // The GCN's distinct candidate pairs (1-hop nodes of every QES): what a
   // kNN with k = k1 would match; gcn.num_pairs of them are kept.
   size_t num_candidates = 0;

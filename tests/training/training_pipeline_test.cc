@@ -168,6 +168,15 @@ TEST(TrainingPipeline, MergedScenesStackImagesAndMakeCrossPairsUnrelated) {
   EXPECT_EQ(AsSet(merged.unrelated_pairs),
             (std::set<std::pair<int, int>>{
                 {0, 2}, {0, 3}, {0, 4}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
+  EXPECT_EQ(merged.part_of_row, (std::vector<int>{0, 0, 0, 1, 1}));
+  // Pairs across the parts are counted once, in either order.
+  const PairSetScores scores =
+      ScorePairSet({{0, 1}, {3, 0}, {0, 3}, {4, 2}, {3, 4}, {0, 2}}, merged);
+  EXPECT_EQ(scores.num_pairs, 5u);
+  EXPECT_EQ(scores.num_true_positives, 2u);
+  EXPECT_EQ(scores.num_cross_scene, 2u);
+  EXPECT_EQ(scores.num_unrelated, 3u);
+  EXPECT_EQ(ScorePairSet({{3, 0}}, a).num_cross_scene, 0u);
   b.embeddings = EmbeddingMatrix::Zero(2, 3);
   EXPECT_THROW(MergeTrainingScenes("a+b", {a, b}), Error);
 }
@@ -254,6 +263,16 @@ TEST(ModelEvaluation, TableShowsEachModelsThresholdAndKeptFraction) {
             std::string::npos)
       << table;
   EXPECT_NE(table.find("P >= 0.85 at R >= 0.8"), std::string::npos) << table;
+  EXPECT_EQ(table.find("| collection |"), std::string::npos) << table;
+  high.is_collection = true;
+  high.gcn.num_cross_scene = 1;
+  const std::string with_collection = FormatFixedKComparison({low, high});
+  EXPECT_NE(with_collection.find("| collection |"), std::string::npos);
+  EXPECT_NE(with_collection.find("| clusters-high | " +
+                                 std::to_string(high.num_images) + " | " +
+                                 std::to_string(high.gcn.num_pairs) + " | "),
+            std::string::npos)
+      << with_collection;
 }
 
 TEST(ModelEvaluation, FoldsFileListsModelsAndTheirScenes) {
