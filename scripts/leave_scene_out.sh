@@ -10,7 +10,8 @@
 #
 # CORPUS (default ../corpus, built by scripts/label_real_corpus.sh) holds
 # one labelled scene per folder; OUT (default CORPUS/leave-scene-out)
-# receives fold<i>.gcnmodel, fold<i>.train.txt, folds.txt and table.md.
+# receives fold<i>.gcnmodel, fold<i>.train.txt, folds.txt and table.md,
+# collection.gcnmodel, collection.train.txt and collection.md.
 # Training uses each training scene alone and all of them as one
 # collection (pairs across scenes unrelated), so the model sees unrelated
 # photos. Scenes missing from CORPUS are left out with a message. Folds
@@ -57,6 +58,34 @@ for ((i = 0; i < NUM_FOLDS; ++i)); do
   FOLDS[$i]="$(present "${FOLDS[$i]}")"
 done
 
+# train_fold <model> <train scenes> <validation scenes> <log> [flags...]:
+# trains unless the model exists.
+train_fold() {
+  local model="$1" train="$2" validation="$3" log="$4"
+  shift 4
+  [ -f "$model" ] && return 0
+  "$COLMAP" gcn_train \
+    --benchmark_path "$CORPUS" \
+    --scenes "$train,${train//,/+}" \
+    --validation_scenes "$validation" \
+    --output_path "$model.tmp" \
+    --GcnTraining.k1 40 --GcnTraining.k2 5 --GcnTraining.u 10 \
+    --GcnTraining.test_k1 40 --GcnTraining.test_k2 5 --GcnTraining.test_u 5 \
+    --GcnTraining.aggregation row \
+    --GcnTraining.initialization distance_prior \
+    --GcnTraining.optimizer adam --GcnTraining.learning_rate 0.0001 \
+    --GcnTraining.batch_size 8 --GcnTraining.num_epochs 12 \
+    --GcnTraining.lr_decay_epochs 8,10 \
+    --GcnTraining.positive_weight -1 \
+    --GcnTraining.early_stopping_patience 4 \
+    --GcnTraining.threshold -1 \
+    --GcnTraining.seed "$SEED" \
+    --GcnTraining.num_threads "$THREADS" \
+    "$@" >"$log" 2>&1 ||
+    { echo "leave_scene_out: training $model failed, see $log" >&2; exit 1; }
+  mv "$model.tmp" "$model"
+}
+
 mkdir -p "$OUT"
 : >"$OUT/folds.txt.tmp"
 for ((i = 0; i < NUM_FOLDS; ++i)); do
@@ -69,29 +98,8 @@ for ((i = 0; i < NUM_FOLDS; ++i)); do
     fi
   done
   model="$OUT/fold$i.gcnmodel"
-  if [ ! -f "$model" ]; then
-    echo "== fold $i: test $test | validation $validation | train $train" >&2
-    "$COLMAP" gcn_train \
-      --benchmark_path "$CORPUS" \
-      --scenes "$train,${train//,/+}" \
-      --validation_scenes "$validation" \
-      --output_path "$model.tmp" \
-      --GcnTraining.k1 40 --GcnTraining.k2 5 --GcnTraining.u 10 \
-      --GcnTraining.test_k1 40 --GcnTraining.test_k2 5 --GcnTraining.test_u 5 \
-      --GcnTraining.aggregation row \
-      --GcnTraining.initialization distance_prior \
-      --GcnTraining.optimizer adam --GcnTraining.learning_rate 0.0001 \
-      --GcnTraining.batch_size 8 --GcnTraining.num_epochs 12 \
-      --GcnTraining.lr_decay_epochs 8,10 \
-      --GcnTraining.positive_weight -1 \
-      --GcnTraining.early_stopping_patience 4 \
-      --GcnTraining.threshold -1 \
-      --GcnTraining.seed "$SEED" \
-      --GcnTraining.num_threads "$THREADS" \
-      "$@" >"$OUT/fold$i.train.txt" 2>&1 ||
-      { echo "leave_scene_out: fold $i failed, see $OUT/fold$i.train.txt" >&2; exit 1; }
-    mv "$model.tmp" "$model"
-  fi
+  echo "== fold $i: test $test | validation $validation | train $train" >&2
+  train_fold "$model" "$train" "$validation" "$OUT/fold$i.train.txt" "$@"
   echo "$model $test" >>"$OUT/folds.txt.tmp"
 done
 mv "$OUT/folds.txt.tmp" "$OUT/folds.txt"
@@ -102,3 +110,16 @@ mv "$OUT/folds.txt.tmp" "$OUT/folds.txt"
   --max_k 40 \
   --num_threads "$THREADS" \
   --output_path "$OUT/table.md"
+
+# Unrelated photos: one collection of the scenes of folds 0 and 1.
+collection="${FOLDS[0]},${FOLDS[1]}"
+echo "== collection: test ${collection//,/+} | validation ${FOLDS[2]} | train ${FOLDS[3]},${FOLDS[4]}" >&2
+train_fold "$OUT/collection.gcnmodel" "${FOLDS[3]},${FOLDS[4]}" "${FOLDS[2]}" \
+  "$OUT/collection.train.txt" "$@"
+"$COLMAP" gcn_model_evaluator \
+  --benchmark_path "$CORPUS" \
+  --model_path "$OUT/collection.gcnmodel" \
+  --scenes "${collection//,/+}" \
+  --max_k 40 \
+  --num_threads "$THREADS" \
+  --output_path "$OUT/collection.md"
