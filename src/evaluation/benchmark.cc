@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <ctime>
 #include <filesystem>
-#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -26,6 +25,7 @@
 #include "synthetic/pair_overlap.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -37,7 +37,7 @@ namespace {
 namespace fs = std::filesystem;
 
 void Progress(const std::string& scene, const std::string& message) {
-  std::cerr << "[gcn_benchmark] " << scene << ": " << message << std::endl;
+  LOG(INFO) << scene << ": " << message;
 }
 
 std::string FormatSeconds(double seconds) {
@@ -532,10 +532,9 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
   std::vector<ImageNamePair> verified;
   {
     const Database database(JoinPaths(dir, "database.db"));
-    const int min_num_inliers =
-        IntArgument(options_.matching_args,
-                    "SiftMatching.min_num_inliers",
-                    PairMatchingOptions().min_num_inliers);
+    PairMatchingOptions matching_options;
+    matching_options.colmap_args = options_.matching_args;
+    const int min_num_inliers = EffectiveMinNumInliers(matching_options);
     for (const TwoViewGeometryInfo& info :
          database.ReadTwoViewGeometryInfos()) {
       if (!IsVerifiedTwoViewGeometry(

@@ -6,6 +6,7 @@
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
 #include "gcn/gcn_trainer.h"
+#include "math/precision_recall.h"
 #include "retrieval/vlad.h"
 
 namespace colmap_gcn {
@@ -83,6 +84,7 @@ struct PairSetScores {
   size_t num_positives = 0;  // matchable pairs in the scene
   // Selected pairs among the scene's unrelated_pairs (wrong pairs).
   size_t num_unrelated = 0;
+  PrecisionRecall Scores() const;
   double Precision() const;
   double Recall() const;
   double F() const;
