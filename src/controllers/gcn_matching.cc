@@ -13,6 +13,7 @@
 #include "util/error.h"
 #include "util/file_lock.h"
 #include "util/interrupt.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/timer.h"
 
@@ -156,7 +157,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
       }
       const std::string warning =
           GcnKeptEveryCandidateWarning(gcn->Stats(), gcn->Options().k1);
-      if (!warning.empty()) std::cerr << warning << "\n";
+      if (!warning.empty()) LOG(WARNING) << warning;
     }
   }
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
@@ -171,9 +172,9 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   matching_options.colmap_args = colmap_args;
   matching_options.scores = scores;
   matching_options.block_size = options.block_size;
-  std::cerr << "gcn_matcher: " << pairs.size() << " pairs from "
-            << options.pairing << " pairing of " << report.num_images
-            << " images; matching with COLMAP " << colmap.Version() << "\n";
+  LOG(INFO) << pairs.size() << " pairs from " << options.pairing
+            << " pairing of " << report.num_images
+            << " images; matching with COLMAP " << colmap.Version();
   report.matching =
       MatchImagePairs(colmap, database_path, pairs, matching_options);
   return report;
@@ -184,15 +185,12 @@ std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1) {
       stats.num_above_threshold < stats.num_candidates) {
     return "";
   }
-  return "gcn_matcher: warning: all " + std::to_string(stats.num_candidates) +
+  return "all " + std::to_string(stats.num_candidates) +
          " candidate pairs scored above the model's threshold: the GCN "
          "chose nothing beyond each image's k1 = " +
          std::to_string(k1) +
          " nearest neighbours; the model is likely not calibrated for "
-         "these images (docs/model_card.md). On photos of several "
-         "unrelated places try --GcnMatching.threshold 0.9; on scenes with "
-         "duplicate objects or repeated structure use --GcnMatching.pairing "
-         "knn --GcnMatching.k 5 or sequential_matcher.";
+         "these images (docs/model_card.md lists what to try)";
 }
 
 void PrintGcnMatchingReport(const GcnMatchingReport& report) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -13,6 +12,7 @@
 #include "gcn/gcn_inference.h"
 #include "gcn/gcn_network.h"
 #include "util/error.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/threading.h"
 #include "util/timer.h"
@@ -202,21 +202,17 @@ void GcnTrainingOptions::Check() const {
   CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
-double GcnClassificationStats::Precision() const {
-  const int64_t predicted = true_positives + false_positives;
-  return predicted > 0 ? static_cast<double>(true_positives) / predicted : 0.0;
+PrecisionRecall GcnClassificationStats::Scores() const {
+  return ComputePrecisionRecall(true_positives,
+                                true_positives + false_positives,
+                                true_positives + false_negatives);
 }
 
-double GcnClassificationStats::Recall() const {
-  const int64_t actual = true_positives + false_negatives;
-  return actual > 0 ? static_cast<double>(true_positives) / actual : 0.0;
-}
+double GcnClassificationStats::Precision() const { return Scores().precision; }
 
-double GcnClassificationStats::F() const {
-  const double p = Precision();
-  const double r = Recall();
-  return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
-}
+double GcnClassificationStats::Recall() const { return Scores().recall; }
+
+double GcnClassificationStats::F() const { return Scores().f_measure; }
 
 double AveragePrecision(const std::vector<float>& scores,
                         const std::vector<uint8_t>& relevant) {
@@ -242,10 +238,6 @@ double GcnClassificationStats::MeanAveragePrecision() const {
                                 : 0.0;
 }
 
-void PrintGcnTrainingLog(const std::string& line) {
-  std::cout << line << std::endl;
-}
-
 GcnTrainer::GcnTrainer(const GcnTrainingOptions& options) : options_(options) {}
 
 GcnModel GcnTrainer::Train(
@@ -254,9 +246,8 @@ GcnModel GcnTrainer::Train(
   const GcnTrainingOptions& o = options_;
   o.Check();
   if (scenes.empty()) ThrowError("no training scenes");
-  auto log = [&](const std::string& line) {
-    if (o.log) o.log(line);
-  };
+  // One line per epoch and a few set-up lines.
+  const auto log = [](const std::string& line) { LOG(INFO) << line; };
   const int threads = EffectiveNumThreads(o.num_threads);
   const int dim = static_cast<int>(scenes[0].embeddings.cols());
   for (const auto* list : {&scenes, &validation_scenes}) {

@@ -1,13 +1,13 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "gcn/gcn_model.h"
 #include "gcn/query_enclosing_subgraph.h"
+#include "math/precision_recall.h"
 #include "retrieval/knn.h"
 
 namespace colmap_gcn {
@@ -26,9 +26,6 @@ struct GcnTrainingScene {
   // across parts can be counted. Empty for a single scene.
   std::vector<int> part_of_row;
 };
-
-// Prints the line to stdout (the default training log).
-void PrintGcnTrainingLog(const std::string& line);
 
 struct GcnTrainingOptions {
   // Network; shape.input_dim is taken from the embeddings.
@@ -92,10 +89,6 @@ struct GcnTrainingOptions {
   uint32_t seed = 0;
   // Threads; -1 = all cores. The result does not depend on it.
   int num_threads = -1;
-  // Called with one line per epoch (and a few set-up lines); default prints
-  // to stdout. Set to an empty function to silence.
-  std::function<void(const std::string&)> log = PrintGcnTrainingLog;
-
   // Throws OptionError naming the first invalid field.
   void Check() const;
 };
@@ -110,6 +103,7 @@ struct GcnClassificationStats {
   // over the queries with at least one matchable node (threshold free).
   double average_precision_sum = 0;
   int64_t num_ranked_queries = 0;
+  PrecisionRecall Scores() const;
   double Precision() const;
   double Recall() const;
   double F() const;

@@ -1,13 +1,13 @@
 #include "retrieval/global_descriptors.h"
 
 #include <cstdio>
-#include <iostream>
 
 #include "retrieval/descriptor_import.h"
 #include "retrieval/embedding_cache.h"
 #include "retrieval/hash.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/string.h"
 
@@ -82,8 +82,7 @@ VladEmbedding LoadOrTrainSelfEmbedding(const Database& database,
       embedding.Write(model_path);
       WriteFileAtomically(key_path, key + "\n");
     } catch (const Error& error) {
-      std::cerr << "warning: self-trained VLAD model not cached: "
-                << error.what() << "\n";
+      LOG(WARNING) << "self-trained VLAD model not cached: " << error.what();
     }
   }
   return embedding;

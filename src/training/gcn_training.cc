@@ -13,6 +13,7 @@
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/string.h"
 
@@ -228,10 +229,8 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
       }
     }
   }
-  const auto& log = options.training.log;
-  if (log)
-    log("training the VLAD embedding on " +
-        std::to_string(database_paths.size()) + " databases");
+  LOG(INFO) << "training the VLAD embedding on " << database_paths.size()
+            << " databases";
   const VladEmbedding vlad = TrainVladEmbedding(database_paths, options.vlad);
 
   auto make_scenes = [&](const std::vector<LabelledScene>& scenes) {
@@ -239,12 +238,9 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
     for (const auto& scene : scenes) {
       made.push_back(MakeTrainingScene(
           scene, vlad, options.labels, options.training.num_threads));
-      if (log) {
-        log("scene " + scene.name + ": " +
-            std::to_string(made.back().embeddings.rows()) + " images, " +
-            std::to_string(made.back().positive_pairs.size()) +
-            " matchable pairs");
-      }
+      LOG(INFO) << "scene " << scene.name << ": "
+                << made.back().embeddings.rows() << " images, "
+                << made.back().positive_pairs.size() << " matchable pairs";
     }
     return made;
   };
@@ -273,11 +269,9 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
         validation.empty() ? train : validation;
     model.info.threshold =
         SelectGcnThreshold(model, selection, options.training.num_threads);
-    if (log) {
-      log("decision threshold " + std::to_string(model.info.threshold) +
-          " (max mean F on the " +
-          (validation.empty() ? "training" : "validation") + " scenes)");
-    }
+    LOG(INFO) << "decision threshold " << std::to_string(model.info.threshold)
+              << " (max mean F on the "
+              << (validation.empty() ? "training" : "validation") << " scenes)";
   }
   std::ostringstream notes;
   notes << "trained on";
@@ -294,22 +288,15 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   return model;
 }
 
-double PairSetScores::Precision() const {
-  return num_pairs == 0 ? 0.0
-                        : static_cast<double>(num_true_positives) / num_pairs;
+PrecisionRecall PairSetScores::Scores() const {
+  return ComputePrecisionRecall(num_true_positives, num_pairs, num_positives);
 }
 
-double PairSetScores::Recall() const {
-  return num_positives == 0
-             ? 0.0
-             : static_cast<double>(num_true_positives) / num_positives;
-}
+double PairSetScores::Precision() const { return Scores().precision; }
 
-double PairSetScores::F() const {
-  const double p = Precision();
-  const double r = Recall();
-  return p + r == 0 ? 0.0 : 2 * p * r / (p + r);
-}
+double PairSetScores::Recall() const { return Scores().recall; }
+
+double PairSetScores::F() const { return Scores().f_measure; }
 
 PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
                            const GcnTrainingScene& scene) {

@@ -6,6 +6,7 @@
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
 #include "gcn/gcn_trainer.h"
+#include "math/precision_recall.h"
 #include "retrieval/vlad.h"
 
 namespace colmap_gcn {
@@ -85,6 +86,7 @@ struct PairSetScores {
   size_t num_unrelated = 0;
   // Selected pairs across the parts of a collection (unrelated photos).
   size_t num_cross_scene = 0;
+  PrecisionRecall Scores() const;
   double Precision() const;
   double Recall() const;
   double F() const;
