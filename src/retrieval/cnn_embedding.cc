@@ -145,6 +145,56 @@ void CnnEmbeddingOptions::Check() const {
   CHECK_OPTION_GE(progress_every, 0);
 }
 
+void CnnEmbeddingOverrides::Check() const {
+  CHECK_OPTION_UNSET_OR_GE(size_multiple, -1, "the model's value", 1);
+  CHECK_OPTION_UNSET_OR_GE(max_image_size, -1, "the model's value", 1);
+  CHECK_OPTION(
+      scale, scale == -1 || scale > 0, "be -1 (the model's value) or > 0");
+  CHECK_OPTION_UNSET_OR_RANGE(mean, -1, "the model's value", 0.0, 255.0);
+  CHECK_OPTION_UNSET_OR_RANGE(swap_rb, -1, "the model's value", 0, 1);
+  CHECK_OPTION_UNSET_OR_GE(gem_p, -1, "the model's value", 1.0);
+  CHECK_OPTION_UNSET_OR_RANGE(center, -1, "the model's value", 0, 1);
+}
+
+CnnEmbeddingOptions CnnEmbeddingOverrides::ApplyTo(
+    CnnEmbeddingOptions options) const {
+  if (max_image_size != -1) options.max_image_size = max_image_size;
+  if (size_multiple != -1) options.size_multiple = size_multiple;
+  if (scale != -1) options.scale = scale;
+  if (mean != -1) options.mean = mean;
+  if (swap_rb != -1) options.swap_rb = swap_rb == 1;
+  if (gem_p != -1) options.gem_p = gem_p;
+  if (center != -1) options.center = center == 1;
+  return options;
+}
+
+void CnnEmbeddingOverrides::CheckAgainst(const CnnEmbeddingOptions& model,
+                                         const std::string& prefix) const {
+  auto check = [&](bool set, double value, double expected, const char* name) {
+    if (set && value != expected) {
+      ThrowError("the GCN model was trained with ",
+                 prefix,
+                 name,
+                 " ",
+                 expected,
+                 " but it is ",
+                 value,
+                 "; leave it unset (-1) or train a model with it");
+    }
+  };
+  check(max_image_size != -1,
+        max_image_size,
+        model.max_image_size,
+        "max_image_size");
+  check(
+      size_multiple != -1, size_multiple, model.size_multiple, "size_multiple");
+  check(scale != -1, scale, model.scale, "scale");
+  check(mean != -1, mean, model.mean, "mean");
+  check(swap_rb != -1, swap_rb, model.swap_rb ? 1 : 0, "swap_rb");
+  check(gem_p != -1, gem_p, model.gem_p, "gem_p");
+  check(center != -1, center, model.center ? 1 : 0, "center");
+}
+
 std::pair<int, int> CnnInputSize(int width,
                                  int height,
                                  const CnnEmbeddingOptions& options) {

@@ -67,6 +67,32 @@ struct CnnEmbeddingOptions {
   void Check() const;
 };
 
+// CNN options as users set them on a command line (--GcnMatching.onnx_*):
+// each unset value (-1) is the model's (GCN pairing) or CnnEmbeddingOptions'
+// default (kNN pairing); a GCN model refuses set values that differ from
+// its own.
+struct CnnEmbeddingOverrides {
+  int max_image_size = -1;
+  int size_multiple = -1;
+  double scale = -1;
+  double mean = -1;
+  int swap_rb = -1;  // -1, 0 or 1
+  double gem_p = -1;
+  int center = -1;  // -1, 0 or 1
+
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
+
+  // `options` with the set values replaced.
+  CnnEmbeddingOptions ApplyTo(CnnEmbeddingOptions options) const;
+
+  // Throws Error naming the first set value that differs from `model`'s:
+  // "the GCN model was trained with <prefix>max_image_size 512 but it is
+  // 768".
+  void CheckAgainst(const CnnEmbeddingOptions& model,
+                    const std::string& prefix) const;
+};
+
 // The network input size of an image of width x height: long side
 // max_image_size, aspect kept, sides rounded to multiples of size_multiple
 // (at least one multiple).
