@@ -21,6 +21,7 @@
 #include <unordered_map>
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -43,8 +44,11 @@ const uint32_t kVersion = 1;
 // The first line of an OpenCV exception, without its file/line prefix.
 std::string OpenCvMessage(const cv::Exception& error) {
   std::string message = error.err.empty() ? error.what() : error.err;
-  const size_t newline = message.find('\n');
-  if (newline != std::string::npos) message.resize(newline);
+  // The importer appends "OpenCV(4.6.0) <source file>:<line>: error: ...".
+  for (const std::string cut : {"\n", " OpenCV("}) {
+    const size_t pos = message.find(cut);
+    if (pos != std::string::npos && pos > 0) message.resize(pos);
+  }
   return StringTrim(message);
 }
 
@@ -61,6 +65,19 @@ std::string ShapeString(const cv::Mat& mat) {
   }
   return shape;
 }
+
+// OpenCV's own log lines (the ONNX importer's "[ERROR:0@...]") are off
+// while loading: failures reach users as one Error line instead.
+class ScopedOpenCvSilence {
+ public:
+  ScopedOpenCvSilence()
+      : previous_(cv::utils::logging::setLogLevel(
+            cv::utils::logging::LOG_LEVEL_SILENT)) {}
+  ~ScopedOpenCvSilence() { cv::utils::logging::setLogLevel(previous_); }
+
+ private:
+  cv::utils::logging::LogLevel previous_;
+};
 
 // Restores OpenCV's thread count on scope exit.
 class ScopedOpenCvThreads {
@@ -227,6 +244,7 @@ struct CnnNetwork::Impl {
   std::vector<cv::dnn::Net> nets;
 
   cv::dnn::Net Load(const std::string& source) const {
+    const ScopedOpenCvSilence silence;
     try {
       cv::dnn::Net net =
           cv::dnn::readNetFromONNX(model_bytes.data(), model_bytes.size());
@@ -266,6 +284,7 @@ CnnNetwork::CnnNetwork(const CnnEmbeddingOptions& options)
   const cv::Mat probe(side, side, CV_8UC3, cv::Scalar(127, 127, 127));
   cv::Mat output;
   try {
+    const ScopedOpenCvSilence silence;
     const ScopedOpenCvThreads single(1);
     impl_->nets[0].setInput(cv::dnn::blobFromImage(probe, options_.scale));
     output = impl_->nets[0].forward();

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "retrieval_test_utils.h"
 #include "test_utils.h"
 #include "util/error.h"
@@ -35,6 +37,116 @@ std::string SharedNetworkPath() {
 void WriteFile(const std::string& path, const std::string& contents) {
   std::ofstream file(path, std::ios::binary);
   file << contents;
+}
+
+// A hand-encoded ONNX model (protobuf wire format, opset 11) with input x
+// (N x 3 x H x W): Relu (a 3-channel "feature map"), or Relu then Reshape to
+// N x 3 x (H W) (a 3-D output, which no descriptor is).
+class Protobuf {
+ public:
+  Protobuf& Varint(int field, uint64_t value) {
+    Key(field, 0);
+    Raw(value);
+    return *this;
+  }
+  Protobuf& Bytes(int field, const std::string& bytes) {
+    Key(field, 2);
+    Raw(bytes.size());
+    out_ += bytes;
+    return *this;
+  }
+  Protobuf& Message(int field, const Protobuf& message) {
+    return Bytes(field, message.out_);
+  }
+  const std::string& Str() const { return out_; }
+
+ private:
+  void Key(int field, int wire_type) { Raw((field << 3) | wire_type); }
+  void Raw(uint64_t value) {
+    while (value >= 0x80) {
+      out_ += static_cast<char>((value & 0x7f) | 0x80);
+      value >>= 7;
+    }
+    out_ += static_cast<char>(value);
+  }
+  std::string out_;
+};
+
+std::string TinyOnnx(bool reshape) {
+  Protobuf shape;
+  for (const char* dim : {"n", "c", "h", "w"}) {
+    shape.Message(1, Protobuf().Bytes(2, dim));  // dim { dim_param }
+  }
+  const Protobuf input_type = Protobuf().Message(
+      1, Protobuf().Varint(1, 1).Message(2, shape));  // float tensor
+  Protobuf graph;
+  graph.Message(
+      1,
+      Protobuf().Bytes(1, "x").Bytes(2, reshape ? "r" : "y").Bytes(4, "Relu"));
+  if (reshape) {
+    Protobuf values;
+    for (const int64_t v : {int64_t{1}, int64_t{3}, int64_t{-1}}) {
+      values.Varint(7, static_cast<uint64_t>(v));  // int64_data
+    }
+    std::string tensor = Protobuf().Varint(1, 3).Varint(2, 7).Str();
+    tensor += values.Str();
+    tensor += Protobuf().Bytes(8, "s").Str();  // name
+    graph.Message(1,
+                  Protobuf().Bytes(1, "r").Bytes(1, "s").Bytes(2, "y").Bytes(
+                      4, "Reshape"));
+    graph.Bytes(5, tensor);  // initializer
+  }
+  graph.Bytes(2, "tiny");
+  graph.Message(11, Protobuf().Bytes(1, "x").Message(2, input_type));
+  Protobuf output_shape;
+  for (const char* dim : reshape
+                             ? std::vector<const char*>{"n", "c", "hw"}
+                             : std::vector<const char*>{"n", "c", "h", "w"}) {
+    output_shape.Message(1, Protobuf().Bytes(2, dim));
+  }
+  const Protobuf output_type =
+      Protobuf().Message(1, Protobuf().Varint(1, 1).Message(2, output_shape));
+  graph.Message(12, Protobuf().Bytes(1, "y").Message(2, output_type));
+  return Protobuf()
+      .Varint(1, 6)                          // ir_version
+      .Message(8, Protobuf().Varint(2, 11))  // opset_import { version }
+      .Message(7, graph)
+      .Str();
+}
+
+TEST(CnnEmbedding, TinyNetworkGivesPooledUnitVectors) {
+  const TemporaryDirectory dir;
+  CnnEmbeddingOptions options;
+  options.onnx_path = JoinPaths(dir.Path(), "relu.onnx");
+  options.progress_every = 0;
+  WriteFile(options.onnx_path, TinyOnnx(false));
+  const CnnNetwork network(options);
+  EXPECT_EQ(network.DescriptorDim(), 3);
+  // A PNG whose colour is mostly red: after swap_rb, channel 0 is red.
+  cv::Mat image(48, 64, CV_8UC3, cv::Scalar(10, 20, 250));  // BGR
+  std::vector<uchar> png;
+  ASSERT_TRUE(cv::imencode(".png", image, png));
+  const std::string bytes(png.begin(), png.end());
+  const Eigen::RowVectorXf descriptor =
+      network.DescribeEncoded(bytes, "red.png");
+  EXPECT_NEAR(descriptor.norm(), 1.f, 1e-6);
+  EXPECT_GT(descriptor(0), 0.99f);  // only red is above the mean 127.5
+  options.num_threads = 2;
+  options.batch_size = 2;
+  const FloatMatrix batch = CnnNetwork(options).DescribeEncodedBatch(
+      {{bytes, "a.png"}, {bytes, "b.png"}, {bytes, "c.png"}});
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(batch.row(i), descriptor);
+}
+
+TEST(CnnEmbedding, OutputThatIsNoDescriptorIsRefused) {
+  const TemporaryDirectory dir;
+  CnnEmbeddingOptions options;
+  options.onnx_path = JoinPaths(dir.Path(), "tokens.onnx");
+  WriteFile(options.onnx_path, TinyOnnx(true));
+  test::ExpectErrorContaining(
+      [&] { CnnNetwork network(options); },
+      options.onnx_path +
+          " outputs 1x3x4096; expected a feature map 1xCxHxW or a vector 1xC");
 }
 
 TEST(CnnEmbeddingOptions, CheckNamesTheField) {
