@@ -44,10 +44,23 @@ const uint32_t kVersion = 1;
 // The first line of an OpenCV exception, without its file/line prefix.
 std::string OpenCvMessage(const cv::Exception& error) {
   std::string message = error.err.empty() ? error.what() : error.err;
-  // The importer appends "OpenCV(4.6.0) <source file>:<line>: error: ...".
-  for (const std::string cut : {"\n", " OpenCV("}) {
-    const size_t pos = message.find(cut);
-    if (pos != std::string::npos && pos > 0) message.resize(pos);
+  const size_t newline = message.find('\n');
+  if (newline != std::string::npos) message.resize(newline);
+  // The importer wraps the cause: "<node> parse error: OpenCV(4.6.0)
+  // <file>:<line>: error: (-2:Unspecified error) <cause> in function '...'";
+  // keep the node and the cause.
+  const size_t wrapped = message.find(" OpenCV(");
+  if (wrapped != std::string::npos && wrapped > 0) {
+    std::string cause;
+    const size_t code = message.find("error: (", wrapped);
+    const size_t code_end =
+        code == std::string::npos ? code : message.find(") ", code);
+    if (code_end != std::string::npos) {
+      cause = message.substr(code_end + 2);
+      const size_t function = cause.find("in function");
+      if (function != std::string::npos) cause.resize(function);
+    }
+    message = StringTrim(message.substr(0, wrapped) + " " + cause);
   }
   return StringTrim(message);
 }
