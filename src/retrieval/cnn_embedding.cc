@@ -595,69 +595,81 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
     }
     WriteCnnCache(cache_path, dim, rows);
   };
-  for (size_t begin = 0; begin < images.size(); begin += chunk_size) {
-    const size_t end = std::min(images.size(), begin + chunk_size);
-    std::vector<std::string> bytes(end - begin);
-    std::vector<char> cached(end - begin, 0);
-    ParallelFor(static_cast<int>(begin),
-                static_cast<int>(end),
-                num_threads,
-                [&](int i) {
-                  const std::string path =
-                      JoinPaths(image_path, images[i].name);
-                  if (!ExistsFile(path)) {
-                    ThrowError("cannot read image ",
-                               images[i].name,
-                               ": ",
-                               path,
-                               " does not exist");
-                  }
-                  std::string& data = bytes[i - begin];
-                  data = ReadTextFile(path);
-                  keys[i] = HashCombine(HashBytes(data.data(), data.size()),
-                                        config_key);
-                  const auto hit = cache.find(keys[i]);
-                  if (hit != cache.end()) {
-                    descriptors.row(i) = hit->second;
-                    cached[i - begin] = 1;
-                  }
-                });
-    std::vector<std::pair<std::string, std::string>> misses;
-    std::vector<size_t> miss_rows;
-    for (size_t i = begin; i < end; ++i) {
-      if (cached[i - begin]) {
-        ++local_stats.num_cached;
-      } else {
-        misses.emplace_back(std::move(bytes[i - begin]),
-                            JoinPaths(image_path, images[i].name));
-        miss_rows.push_back(i);
+  // Images [0, done) have their descriptors.
+  size_t done = 0;
+  try {
+    for (size_t begin = 0; begin < images.size(); begin += chunk_size) {
+      const size_t end = std::min(images.size(), begin + chunk_size);
+      std::vector<std::string> bytes(end - begin);
+      std::vector<char> cached(end - begin, 0);
+      ParallelFor(static_cast<int>(begin),
+                  static_cast<int>(end),
+                  num_threads,
+                  [&](int i) {
+                    const std::string path =
+                        JoinPaths(image_path, images[i].name);
+                    if (!ExistsFile(path)) {
+                      ThrowError("cannot read image ",
+                                 images[i].name,
+                                 ": ",
+                                 path,
+                                 " does not exist");
+                    }
+                    std::string& data = bytes[i - begin];
+                    data = ReadTextFile(path);
+                    keys[i] = HashCombine(HashBytes(data.data(), data.size()),
+                                          config_key);
+                    const auto hit = cache.find(keys[i]);
+                    if (hit != cache.end()) {
+                      descriptors.row(i) = hit->second;
+                      cached[i - begin] = 1;
+                    }
+                  });
+      std::vector<std::pair<std::string, std::string>> misses;
+      std::vector<size_t> miss_rows;
+      for (size_t i = begin; i < end; ++i) {
+        if (cached[i - begin]) {
+          ++local_stats.num_cached;
+        } else {
+          misses.emplace_back(std::move(bytes[i - begin]),
+                              JoinPaths(image_path, images[i].name));
+          miss_rows.push_back(i);
+        }
       }
-    }
-    if (!misses.empty()) {
-      const FloatMatrix computed = network.DescribeEncodedBatch(misses);
-      for (size_t m = 0; m < miss_rows.size(); ++m) {
-        descriptors.row(miss_rows[m]) = computed.row(m);
+      if (!misses.empty()) {
+        const FloatMatrix computed = network.DescribeEncodedBatch(misses);
+        for (size_t m = 0; m < miss_rows.size(); ++m) {
+          descriptors.row(miss_rows[m]) = computed.row(m);
+        }
+        local_stats.num_computed += misses.size();
       }
-      local_stats.num_computed += misses.size();
+      if (options.progress_every > 0 &&
+          (end >= next_progress || end == images.size())) {
+        while (next_progress <= end) next_progress += options.progress_every;
+        char line[160];
+        std::snprintf(line,
+                      sizeof(line),
+                      "CNN embedding: %zu/%zu images (%zu cached), %.1f s",
+                      end,
+                      images.size(),
+                      local_stats.num_cached,
+                      timer.ElapsedSeconds());
+        std::cerr << line << "\n";
+      }
+      if (!cache_path.empty() && local_stats.num_computed > 0 &&
+          end < images.size() && timer.ElapsedSeconds() - last_write > 30) {
+        write_cache(end);
+        last_write = timer.ElapsedSeconds();
+      }
+      done = end;
     }
-    if (options.progress_every > 0 &&
-        (end >= next_progress || end == images.size())) {
-      while (next_progress <= end) next_progress += options.progress_every;
-      char line[160];
-      std::snprintf(line,
-                    sizeof(line),
-                    "CNN embedding: %zu/%zu images (%zu cached), %.1f s",
-                    end,
-                    images.size(),
-                    local_stats.num_cached,
-                    timer.ElapsedSeconds());
-      std::cerr << line << "\n";
+  } catch (...) {
+    // What was computed before an unreadable image (or an interruption that
+    // throws) is kept for the next run.
+    if (!cache_path.empty() && local_stats.num_computed > 0 && done > 0) {
+      write_cache(done);
     }
-    if (!cache_path.empty() && local_stats.num_computed > 0 &&
-        end < images.size() && timer.ElapsedSeconds() - last_write > 30) {
-      write_cache(end);
-      last_write = timer.ElapsedSeconds();
-    }
+    throw;
   }
   if (!cache_path.empty() &&
       (local_stats.num_computed > 0 || cache.size() != images.size())) {

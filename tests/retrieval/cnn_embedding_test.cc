@@ -456,6 +456,44 @@ TEST_F(CnnSharedTest, CacheReturnsIdenticalBytesAndMissesChangedFiles) {
   EXPECT_EQ(stats.num_computed, 8u);
 }
 
+TEST_F(CnnSharedTest, FailedRunKeepsWhatItComputed) {
+  SKIP_WITHOUT_NETWORK();
+  // 20 images (the 8 files, repeated under new names), the 17th missing:
+  // the run fails naming it, and the next one reuses everything before it.
+  const std::string db = JoinPaths(dir_.Path(), "db.db");
+  std::vector<std::pair<std::string, FeatureDescriptors>> images;
+  for (int i = 0; i < 20; ++i) {
+    const std::string name = "copy" + std::to_string(100 + i) + ".img";
+    if (i != 16) {
+      std::filesystem::copy_file(JoinPaths(dir_.Path(), names_[i % 8]),
+                                 JoinPaths(dir_.Path(), name));
+    }
+    images.emplace_back(name, test::RandomDescriptors(10, 2, i));
+  }
+  test::CreateDescriptorDatabase(db, images);
+  options_.num_threads = 1;  // chunks of 8 images
+  const CnnNetwork network(options_);
+  const std::string cache = DefaultCnnCachePath(db);
+  std::vector<image_t> ids;
+  test::ExpectErrorContaining(
+      [&] {
+        ComputeDatabaseCnnDescriptors(
+            Database(db), network, dir_.Path(), cache, &ids);
+      },
+      "cannot read image copy116.img");
+  ASSERT_TRUE(ExistsFile(cache));
+  std::filesystem::copy_file(JoinPaths(dir_.Path(), names_[0]),
+                             JoinPaths(dir_.Path(), "copy116.img"));
+  EmbeddingCacheStats stats;
+  const FloatMatrix resumed = ComputeDatabaseCnnDescriptors(
+      Database(db), network, dir_.Path(), cache, &ids, &stats);
+  // The first two chunks (16 images; 8 distinct files) were kept; the
+  // rest are copies of those files too, so they hit as well.
+  EXPECT_EQ(stats.num_cached, 20u);
+  EXPECT_EQ(stats.num_computed, 0u);
+  EXPECT_EQ(resumed.row(16), resumed.row(0));
+}
+
 TEST_F(CnnSharedTest, ModelRefusesAnotherNetwork) {
   SKIP_WITHOUT_NETWORK();
   const CnnNetwork network(options_);
