@@ -19,6 +19,7 @@
 #include <cstring>
 #include <iostream>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
@@ -671,8 +672,12 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
     }
     throw;
   }
+  // Rewritten when something was computed or stale entries are dropped
+  // (images with identical files share one entry).
+  const size_t num_keys =
+      std::unordered_set<uint64_t>(keys.begin(), keys.end()).size();
   if (!cache_path.empty() &&
-      (local_stats.num_computed > 0 || cache.size() != images.size())) {
+      (local_stats.num_computed > 0 || cache.size() != num_keys)) {
     write_cache(images.size());
   }
   if (stats != nullptr) *stats = local_stats;
