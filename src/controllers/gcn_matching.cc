@@ -29,6 +29,31 @@ void GcnMatchingOptions::Check() const {
   CHECK_OPTION_GE(min_pairs_per_image, 0);
   CHECK_OPTION_GE(k, 1);
   CHECK_OPTION_NUM_THREADS(num_threads);
+  CHECK_OPTION(embedding,
+               embedding.empty() || embedding == "vlad" ||
+                   embedding == "onnx" || embedding == "vlad+onnx" ||
+                   embedding == "imported",
+               "be empty (the model's; knn: vlad) or one of vlad, onnx, "
+               "vlad+onnx, imported");
+  onnx.Check();
+  CHECK_OPTION_GE(onnx_batch_size, 1);
+  if (embedding == "onnx" || embedding == "vlad+onnx") {
+    CHECK_OPTION(
+        onnx_path,
+        !onnx_path.empty(),
+        "name the ONNX network when --GcnMatching.embedding is " + embedding);
+    CHECK_OPTION(image_path,
+                 !image_path.empty(),
+                 "name the image folder (the one given to feature_extractor) "
+                 "when --GcnMatching.embedding is " +
+                     embedding);
+  }
+  if (embedding == "imported") {
+    CHECK_OPTION(descriptor_path,
+                 !descriptor_path.empty(),
+                 "name the descriptor file when --GcnMatching.embedding is "
+                 "imported");
+  }
   if (pairing == "imported") {
     CHECK_OPTION(match_list_path,
                  !match_list_path.empty(),
@@ -64,13 +89,16 @@ std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
   if (options.threshold >= 0) pairing.threshold = options.threshold;
   pairing.min_pairs_per_image = options.min_pairs_per_image;
   pairing.num_threads = options.num_threads;
+  ModelEmbeddingOptions embedding;
+  embedding.embedding = options.embedding;
+  embedding.descriptor_path = options.descriptor_path;
+  embedding.onnx_path = options.onnx_path;
+  embedding.onnx = options.onnx;
+  embedding.onnx_batch_size = options.onnx_batch_size;
+  embedding.num_threads = options.num_threads;
   std::vector<image_t> image_ids;
-  const EmbeddingMatrix embeddings =
-      ComputeModelEmbeddings(model,
-                             database,
-                             options.descriptor_path,
-                             options.num_threads,
-                             &image_ids);
+  const EmbeddingMatrix embeddings = ComputeModelEmbeddings(
+      model, database, embedding, options.image_path, &image_ids);
   return std::make_unique<GcnPairGenerator>(
       pairing, image_ids, embeddings, model);
 }
@@ -87,6 +115,21 @@ std::unique_ptr<PairGenerator> CreatePairGenerator(
     knn.num_threads = options.num_threads;
     knn.descriptors.embedding_path = options.embedding_path;
     knn.descriptors.descriptor_path = options.descriptor_path;
+    if (options.embedding == "imported") {
+      knn.descriptors.embedding = "vlad";  // descriptor_path takes over
+    } else if (!options.embedding.empty()) {
+      if (!options.descriptor_path.empty()) {
+        ThrowError(
+            "--GcnMatching.descriptor_path imports descriptors; it "
+            "cannot be combined with --GcnMatching.embedding ",
+            options.embedding);
+      }
+      knn.descriptors.embedding = options.embedding;
+    }
+    knn.descriptors.cnn = options.onnx.ApplyTo(knn.descriptors.cnn);
+    knn.descriptors.cnn.onnx_path = options.onnx_path;
+    knn.descriptors.cnn.batch_size = options.onnx_batch_size;
+    knn.descriptors.image_path = options.image_path;
     return std::make_unique<KnnPairGenerator>(knn, database);
   }
   if (options.pairing == "vocab_tree") {

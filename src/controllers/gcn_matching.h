@@ -7,6 +7,7 @@
 #include "controllers/pair_matching.h"
 #include "feature/pairing.h"
 #include "gcn/gcn_pair_generator.h"
+#include "retrieval/cnn_embedding.h"
 #include "scene/database.h"
 
 namespace colmap_gcn {
@@ -44,6 +45,18 @@ struct GcnMatchingOptions {
   // Imported global descriptors, .h5 (hloc) / .npy / .txt, used instead of
   // VLAD (pairing = knn, or gcn with a model trained on them).
   std::string descriptor_path = "";
+
+  // Embedding (pairing = gcn | knn): "" (gcn: the model's; knn: imported
+  // with descriptor_path, else vlad) | vlad | onnx | vlad+onnx | imported.
+  // onnx runs the ONNX network onnx_path (OpenCV DNN) on the image files in
+  // image_path (the folder given to feature_extractor); onnx.* are its
+  // input size, normalisation and GeM exponent (-1: the model's, or for knn
+  // MobileNetV2's; docs/retrieval.md).
+  std::string embedding = "";
+  std::string onnx_path = "";
+  std::string image_path = "";
+  CnnEmbeddingOverrides onnx;
+  int onnx_batch_size = 1;
 
   // Vocabulary tree; empty: build one from the database itself
   // (pairing = vocab_tree).

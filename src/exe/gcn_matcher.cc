@@ -43,6 +43,42 @@ void AddGcnMatchingOptions(OptionManager* manager,
   manager->AddDefaultOption("GcnMatching.descriptor_path",
                             &options->descriptor_path,
                             "imported global descriptors (.h5 | .npy | .txt)");
+  manager->AddDefaultOption(
+      "GcnMatching.embedding",
+      &options->embedding,
+      "vlad | onnx | vlad+onnx | imported; empty: the model's (gcn), vlad "
+      "(knn)");
+  manager->AddDefaultOption("GcnMatching.onnx_path",
+                            &options->onnx_path,
+                            "ONNX network for embedding=onnx (OpenCV DNN)");
+  manager->AddDefaultOption(
+      "GcnMatching.image_path",
+      &options->image_path,
+      "folder of the images (as given to feature_extractor); needed by onnx");
+  manager->AddDefaultOption("GcnMatching.onnx_max_image_size",
+                            &options->onnx.max_image_size,
+                            "CNN input long side; -1: the model's (knn: 512)");
+  manager->AddDefaultOption("GcnMatching.onnx_size_multiple",
+                            &options->onnx.size_multiple,
+                            "CNN input sides multiple of; -1: model's (32)");
+  manager->AddDefaultOption("GcnMatching.onnx_scale",
+                            &options->onnx.scale,
+                            "(pixel - mean) * scale; -1: model's (1/127.5)");
+  manager->AddDefaultOption("GcnMatching.onnx_mean",
+                            &options->onnx.mean,
+                            "subtracted from pixels; -1: model's (127.5)");
+  manager->AddDefaultOption("GcnMatching.onnx_swap_rb",
+                            &options->onnx.swap_rb,
+                            "1: RGB input, 0: BGR; -1: model's (1)");
+  manager->AddDefaultOption("GcnMatching.onnx_gem_p",
+                            &options->onnx.gem_p,
+                            "GeM pooling exponent; -1: model's (3)");
+  manager->AddDefaultOption("GcnMatching.onnx_center",
+                            &options->onnx.center,
+                            "1: subtract the collection mean; -1: model's (1)");
+  manager->AddDefaultOption("GcnMatching.onnx_batch_size",
+                            &options->onnx_batch_size,
+                            "images per CNN forward pass");
   manager->AddDefaultOption("GcnMatching.vocab_tree_path",
                             &options->vocab_tree_path,
                             "vocabulary tree; empty: built from this database");

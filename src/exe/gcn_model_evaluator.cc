@@ -25,6 +25,8 @@ int RunGcnModelEvaluator(int argc, char** argv) {
   double tau_ct = -1;
   int max_k = 100;
   int num_threads = -1;
+  std::string onnx_path;
+  SceneImageOptions images;
   OptionManager manager(
       "gcn_model_evaluator",
       "Compares a GCN model with fixed-k retrieval on labelled scenes "
@@ -57,6 +59,15 @@ int RunGcnModelEvaluator(int argc, char** argv) {
       "tau_mo", &tau_mo, "label thresholds; < 0: the model's training ones");
   manager.AddDefaultOption("tau_ct", &tau_ct);
   manager.AddDefaultOption("num_threads", &num_threads, "-1: all cores");
+  manager.AddDefaultOption(
+      "onnx_path", &onnx_path, "the ONNX network of a CNN-embedding model");
+  manager.AddDefaultOption("image_root",
+                           &images.image_root,
+                           "folder with <scene>/images (CNN models)");
+  manager.AddDefaultOption(
+      "onnx_cache_dir",
+      &images.cnn_cache_dir,
+      "CNN descriptor caches; empty: beside each scene's base.db");
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
@@ -99,7 +110,9 @@ int RunGcnModelEvaluator(int argc, char** argv) {
         EmbedScenesForModel(model,
                             FindLabelledScenes(benchmark_path, fold.scenes),
                             labels,
-                            num_threads);
+                            num_threads,
+                            onnx_path,
+                            images);
     const std::vector<FixedKComparison> fold_comparisons =
         CompareWithFixedK(model, embedded, max_k, num_threads);
     comparisons.insert(

@@ -3,10 +3,12 @@
 #include <string>
 #include <vector>
 
+#include "controllers/gcn_model_pairing.h"
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
 #include "gcn/gcn_trainer.h"
 #include "math/precision_recall.h"
+#include "retrieval/cnn_embedding.h"
 #include "retrieval/vlad.h"
 
 namespace colmap_gcn {
@@ -37,10 +39,33 @@ std::vector<LabelledScene> WithoutHeldOutScenes(
     const std::vector<LabelledScene>& scenes,
     const std::vector<std::string>& held_out);
 
+// Where a labelled scene's image files and CNN descriptor cache are (CNN
+// embeddings read the images; the corpus's databases name them relative
+// to <image_root>/<scene>/images, as gcn_benchmark extracted them).
+struct SceneImageOptions {
+  std::string image_root = "../shared/datasets";
+
+  // CNN caches as <cnn_cache_dir>/<scene>.gcn-cnn-embedding.bin; empty:
+  // beside each scene's database.
+  std::string cnn_cache_dir = "";
+
+  std::string ImagePath(const LabelledScene& scene) const;
+  std::string CnnCachePath(const LabelledScene& scene) const;
+};
+
 struct GcnTrainingPipelineOptions {
-  // The shared embedding: one VLAD codebook + whitening trained on all
-  // training databases, stored in the model so inference embeds alike.
+  // The model's embedding: vlad | onnx | vlad+onnx (each part L2-normalised
+  // and scaled by 1/sqrt(2)).
+  std::string embedding = "vlad";
+
+  // The shared VLAD: one codebook + whitening trained on all training
+  // databases, stored in the model so inference embeds alike.
   VladOptions vlad;
+
+  // The CNN (onnx_path, preprocessing, pooling, PCA-whitening learned on the
+  // training databases), stored in the model with the network's checksum.
+  CnnEmbeddingOptions cnn;
+  SceneImageOptions images;
 
   // Labels: matchable when overlap >= tau_MO or common tracks >= tau_CT.
   PairLabelOptions labels;
@@ -69,6 +94,14 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
                                    const VladEmbedding& vlad,
                                    const PairLabelOptions& label_options,
                                    int num_threads);
+
+// The same with any model embedding: each database embedded by
+// embedder.EmbedDatabase (images and cache as `images` says), then the
+// whole scene or collection by embedder.Finalize (CNN centring and PCA).
+GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
+                                   const ModelEmbedder& embedder,
+                                   const SceneImageOptions& images,
+                                   const PairLabelOptions& label_options);
 
 // Trains the embedding on the training scenes, then the GCN (validating on
 // validation_scenes, or on a held-out fraction of queries when empty), and

@@ -80,18 +80,27 @@ std::vector<GcnTrainingScene> EmbedScenesForModel(
     const GcnModel& model,
     const std::vector<LabelledScene>& scenes,
     const PairLabelOptions& label_options,
-    int num_threads) {
-  if (model.embedding.type != "vlad") {
+    int num_threads,
+    const std::string& onnx_path,
+    const SceneImageOptions& images,
+    const std::string& onnx_flag) {
+  if (model.embedding.type.rfind("imported", 0) == 0) {
     ThrowError("the model uses imported descriptors (",
                model.embedding.type,
-               "); only VLAD models can embed benchmark scenes");
+               "); only VLAD and CNN models can embed benchmark scenes");
   }
-  const VladEmbedding vlad =
-      VladEmbedding::Deserialize(model.embedding.blob, "the model");
+  ModelEmbeddingOptions options;
+  options.onnx_path = onnx_path;
+  options.onnx_flag = onnx_flag;
+  options.num_threads = num_threads;
+  options.use_vlad_cache = false;
+  const ModelEmbedder embedder(model.embedding, options);
   std::vector<GcnTrainingScene> embedded;
   for (const auto& scene : scenes) {
     embedded.push_back(
-        MakeTrainingScene(scene, vlad, label_options, num_threads));
+        MakeTrainingScene(scene, embedder, images, label_options));
+    model.CheckEmbeddingDimension(
+        static_cast<int>(embedded.back().embeddings.cols()));
   }
   return embedded;
 }

@@ -8,13 +8,18 @@
 
 namespace colmap_gcn {
 
-// The labelled scenes embedded with the model's own embedding (VLAD models
-// only; throws Error for models on imported descriptors).
+// The labelled scenes embedded with the model's own embedding (VLAD, CNN
+// or both; throws Error for models on imported descriptors). CNN models
+// need the ONNX network (onnx_path; `onnx_flag` names its option in
+// errors) and the scenes' images.
 std::vector<GcnTrainingScene> EmbedScenesForModel(
     const GcnModel& model,
     const std::vector<LabelledScene>& scenes,
     const PairLabelOptions& label_options,
-    int num_threads);
+    int num_threads,
+    const std::string& onnx_path = "",
+    const SceneImageOptions& images = SceneImageOptions(),
+    const std::string& onnx_flag = "--onnx_path");
 
 // A model against fixed-k retrieval on the same embedding, on one scene
 // the model was not trained on.
