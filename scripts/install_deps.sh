@@ -8,8 +8,8 @@ PACKAGES=(
   build-essential cmake git
   # COLMAP itself (3.8, CPU-only use) and the libraries its design card names.
   colmap libeigen3-dev libopencv-dev libceres-dev libsuitesparse-dev
-  # Database access, options, tests and benchmarks.
-  libsqlite3-dev sqlite3 libboost-program-options-dev
+  # Database access, options, result files (JSON), tests and benchmarks.
+  libsqlite3-dev sqlite3 libboost-program-options-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # hloc global descriptors (HDF5); FAISS for approximate kNN at scale.
   libhdf5-dev libfaiss-dev

@@ -1,75 +1,125 @@
 #!/usr/bin/env bash
-# Leave-one-scene-out evaluation over the shared real scenes with ground
-# truth (docs/model_card.md): for each such scene, the default model's recipe
-# trains a fold with the *other* ground-truth scenes added to its training
-# set, and `colmap gcn_model_evaluator` scores the left-out scene with that
-# fold's model. No scene is ever reported by a model that was trained on it.
+# Leave-scene-out evaluation over the real labelled corpus
+# (docs/real_corpus.md, docs/model_card.md): five rotating folds of real
+# scenes; fold i is the test fold, fold i+1 validates (early stopping and
+# the decision threshold), the other three train. Every scene is reported
+# once, by the model of the fold that left it out, in one table
+# (`colmap gcn_model_evaluator --folds_path`).
 #
-#   scripts/leave_scene_out.sh [WORK_DIR]
+#   scripts/leave_scene_out.sh [CORPUS] [OUT] [extra gcn_train flags...]
 #
-# WORK_DIR (default train-work/, shared with scripts/train_default_model.sh)
-# caches the prepared scenes; the folds' models and outputs are written to
-# WORK_DIR/leave-scene-out/. Environment as for train_default_model.sh.
+# CORPUS (default ../corpus, built by scripts/label_real_corpus.sh) holds
+# one labelled scene per folder; OUT (default CORPUS/leave-scene-out)
+# receives fold<i>.gcnmodel, fold<i>.train.txt, folds.txt and table.md,
+# collection.gcnmodel, collection.train.txt and collection.md.
+# Training uses each training scene alone and all of them as one
+# collection (pairs across scenes unrelated), so the model sees unrelated
+# photos. Scenes missing from CORPUS are left out with a message. Folds
+# whose model exists are not retrained (delete it to retrain).
+# Environment: COLMAP_GCN_BUILD (default build), SEED (0), THREADS (2).
 set -euo pipefail
-cd "$(dirname "$0")/.."
-WORK="${1:-train-work}"
+REPO="$(cd "$(dirname "$0")/.." && pwd)"
+CORPUS="$(realpath -m "${1:-$REPO/../corpus}")"
+OUT="$(realpath -m "${2:-$CORPUS/leave-scene-out}")"
+shift $(($# < 2 ? $# : 2))
+cd "$REPO"
 BUILD="${COLMAP_GCN_BUILD:-build}"
-SHARED="${SHARED:-../shared/datasets}"
-OUT="$WORK/leave-scene-out"
-mkdir -p "$OUT"
+COLMAP="$BUILD/bin/colmap"
+SEED="${SEED:-0}"
+THREADS="${THREADS:-2}"
 
-SCENES=()
-for scene in fountain-P11 entry-P10 temple-sparse-ring dino-sparse-ring; do
-  if [ -d "$SHARED/$scene/gt" ]; then
-    SCENES+=("$scene")
-  else
-    echo "leave_scene_out: $SHARED/$scene/gt not found, skipped" >&2
-  fi
-done
-if [ "${#SCENES[@]}" -lt 2 ]; then
-  echo "leave_scene_out: needs at least two scenes with ground truth" >&2
+# Fixed before any fold was trained: sizes spread over the folds, each fold
+# one small, one mid-sized and one large scene.
+FOLDS=(
+  "entry-P10,dtu-scan37,bm-mold-gold-cape"
+  "fountain-P11,fox,cup-desk"
+  "dino-sparse-ring,box-office,can-tiles"
+  "temple-sparse-ring,bm-ethiopian-head,figure-kitchen"
+  "figurine,bm-mary-rose,giza-rooftop"
+)
+
+if [ ! -d "$CORPUS" ]; then
+  echo "leave_scene_out: $CORPUS not found (build it with scripts/label_real_corpus.sh)" >&2
   exit 1
 fi
-
-for test in "${SCENES[@]}"; do
-  others=""
-  for scene in "${SCENES[@]}"; do
-    [ "$scene" = "$test" ] || others="$others${others:+,}$scene"
+present() {  # present <comma list>: the scenes with labels, comma list
+  local kept=""
+  for scene in ${1//,/ }; do
+    if [ -f "$CORPUS/$scene/labels/labels.csv" ]; then
+      kept="$kept${kept:+,}$scene"
+    else
+      echo "leave_scene_out: $scene has no labels in $CORPUS, left out" >&2
+    fi
   done
-  echo "== fold $test: trained with $others" >&2
-  GT_TRAIN="$others" GT_TEST="$test" scripts/train_default_model.sh \
-    "$WORK" "$OUT/$test.gcnmodel" >"$OUT/$test.train.txt" 2>&1 ||
-    { echo "leave_scene_out: fold $test failed, see $OUT/$test.train.txt" >&2; exit 1; }
-  "$BUILD/bin/colmap" gcn_model_evaluator \
-    --model_path "$OUT/$test.gcnmodel" \
-    --benchmark_path "$WORK" \
-    --scenes "$test" \
-    --max_k 15 >"$OUT/$test.txt"
-done
-
-# One table per question, one row per left-out scene.
-print_rows() {  # print_rows <table header prefix>
-  local header="$1" first=1
-  for test in "${SCENES[@]}"; do
-    awk -v h="$header" -v first="$first" '
-      index($0, h) == 1 { on = 1; if (first) print; next }
-      on && /^\|---/ { if (first) print; next }
-      on && /^\| / { print; next }
-      on { on = 0 }' "$OUT/$test.txt"
-    first=0
-  done
+  echo "$kept"
 }
-echo "Leave-one-scene-out over ${SCENES[*]} (each row: the fold that never saw the scene)."
-echo
-echo "F against fixed k, and ranking AP:"
-echo
-print_rows "| scene | pairs | matchable |"
-echo
-echo "Best precision at recall >= 0.8 (threshold chosen with the labels):"
-echo
-print_rows "| scene | GCN | similarity |"
-echo
-for test in "${SCENES[@]}"; do
-  grep -o "threshold [0-9.]*; seed" "$OUT/$test.train.txt" |
-    sed "s/; seed//;s/^/$test fold: decision /"
+NUM_FOLDS=${#FOLDS[@]}
+for ((i = 0; i < NUM_FOLDS; ++i)); do
+  FOLDS[$i]="$(present "${FOLDS[$i]}")"
 done
+
+# train_fold <model> <train scenes> <validation scenes> <log> [flags...]:
+# trains unless the model exists.
+train_fold() {
+  local model="$1" train="$2" validation="$3" log="$4"
+  shift 4
+  [ -f "$model" ] && return 0
+  "$COLMAP" gcn_train \
+    --benchmark_path "$CORPUS" \
+    --scenes "$train,${train//,/+}" \
+    --validation_scenes "$validation" \
+    --output_path "$model.tmp" \
+    --GcnTraining.k1 40 --GcnTraining.k2 5 --GcnTraining.u 10 \
+    --GcnTraining.test_k1 40 --GcnTraining.test_k2 5 --GcnTraining.test_u 5 \
+    --GcnTraining.aggregation row \
+    --GcnTraining.initialization distance_prior \
+    --GcnTraining.optimizer adam --GcnTraining.learning_rate 0.0001 \
+    --GcnTraining.batch_size 8 --GcnTraining.num_epochs 12 \
+    --GcnTraining.lr_decay_epochs 8,10 \
+    --GcnTraining.positive_weight -1 \
+    --GcnTraining.early_stopping_patience 4 \
+    --GcnTraining.threshold -1 \
+    --GcnTraining.seed "$SEED" \
+    --GcnTraining.num_threads "$THREADS" \
+    "$@" >"$log" 2>&1 ||
+    { echo "leave_scene_out: training $model failed, see $log" >&2; exit 1; }
+  mv "$model.tmp" "$model"
+}
+
+mkdir -p "$OUT"
+: >"$OUT/folds.txt.tmp"
+for ((i = 0; i < NUM_FOLDS; ++i)); do
+  test="${FOLDS[$i]}"
+  validation="${FOLDS[$(((i + 1) % NUM_FOLDS))]}"
+  train=""
+  for ((j = 0; j < NUM_FOLDS; ++j)); do
+    if [ "$j" -ne "$i" ] && [ "$j" -ne $(((i + 1) % NUM_FOLDS)) ]; then
+      train="$train${train:+,}${FOLDS[$j]}"
+    fi
+  done
+  model="$OUT/fold$i.gcnmodel"
+  echo "== fold $i: test $test | validation $validation | train $train" >&2
+  train_fold "$model" "$train" "$validation" "$OUT/fold$i.train.txt" "$@"
+  echo "$model $test" >>"$OUT/folds.txt.tmp"
+done
+mv "$OUT/folds.txt.tmp" "$OUT/folds.txt"
+
+"$COLMAP" gcn_model_evaluator \
+  --benchmark_path "$CORPUS" \
+  --folds_path "$OUT/folds.txt" \
+  --max_k 40 \
+  --num_threads "$THREADS" \
+  --output_path "$OUT/table.md"
+
+# Unrelated photos: one collection of the scenes of folds 0 and 1.
+collection="${FOLDS[0]},${FOLDS[1]}"
+echo "== collection: test ${collection//,/+} | validation ${FOLDS[2]} | train ${FOLDS[3]},${FOLDS[4]}" >&2
+train_fold "$OUT/collection.gcnmodel" "${FOLDS[3]},${FOLDS[4]}" "${FOLDS[2]}" \
+  "$OUT/collection.train.txt" "$@"
+"$COLMAP" gcn_model_evaluator \
+  --benchmark_path "$CORPUS" \
+  --model_path "$OUT/collection.gcnmodel" \
+  --scenes "${collection//,/+}" \
+  --max_k 40 \
+  --num_threads "$THREADS" \
+  --output_path "$OUT/collection.md"

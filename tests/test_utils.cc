@@ -97,5 +97,9 @@ void ExpectErrorContaining(const std::function<void()>& function,
   }
 }
 
+void LogLines::Send(LogLevel /*level*/, const std::string& message) {
+  messages_.push_back(message);
+}
+
 }  // namespace test
 }  // namespace colmap_gcn

@@ -2,6 +2,9 @@
 
 #include <functional>
 #include <string>
+#include <vector>
+
+#include "util/logging.h"
 
 namespace colmap_gcn {
 namespace test {
@@ -28,6 +31,18 @@ extern const char* const kColmap38Schema;
 // contains expected.
 void ExpectErrorContaining(const std::function<void()>& function,
                            const std::string& expected);
+
+// The messages LOG writes while it is registered (with ScopedLogSink), in
+// order, without their prefix.
+class LogLines : public LogSink {
+ public:
+  void Send(LogLevel level, const std::string& message) override;
+  size_t size() const { return messages_.size(); }
+  const std::string& operator[](size_t i) const { return messages_.at(i); }
+
+ private:
+  std::vector<std::string> messages_;
+};
 
 }  // namespace test
 }  // namespace colmap_gcn

@@ -10,12 +10,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <regex>
 
 #include "util/error.h"
 #include "util/file.h"
 #include "util/interrupt.h"
+#include "util/logging.h"
 #include "util/string.h"
 
 extern char** environ;
@@ -219,7 +219,7 @@ std::string ColmapRunner::Run(const std::string& command,
       RunProcess(exe_, args, &output, [&](const std::string& line) {
         if (options_.verbose ||
             (options_.show_progress && IsProgressLine(line))) {
-          std::cerr << "  [colmap " << command << "] " << line << "\n";
+          LOG(INFO) << "[colmap " << command << "] " << line;
         }
       });
   if (log.is_open()) {

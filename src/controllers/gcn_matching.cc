@@ -2,13 +2,13 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 
 #include "controllers/colmap_runner.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"
 #include "util/file_lock.h"
 #include "util/interrupt.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/string.h"
 #include "util/timer.h"
@@ -93,7 +93,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
     // Scores (the GCN's) go into the pairs file for users to inspect.
     scores = generator->Scores();
     const std::string warning = generator->Warning();
-    if (!warning.empty()) std::cerr << warning << "\n";
+    if (!warning.empty()) LOG(WARNING) << warning;
   }
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
 
@@ -107,9 +107,9 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   matching_options.colmap_args = options.colmap_args;
   matching_options.scores = scores;
   matching_options.block_size = options.matching.block_size;
-  std::cerr << "gcn_matcher: " << pairs.size() << " pairs from "
-            << options.pairing << " pairing of " << report.num_images
-            << " images; matching with COLMAP " << colmap.Version() << "\n";
+  LOG(INFO) << pairs.size() << " pairs from " << options.pairing
+            << " pairing of " << report.num_images
+            << " images; matching with COLMAP " << colmap.Version();
   report.matching =
       MatchImagePairs(colmap, database_path, pairs, matching_options);
   return report;

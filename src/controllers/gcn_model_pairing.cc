@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "gcn/model_file.h"
@@ -24,6 +25,31 @@ void GcnModelPairingOptions::Check() const {
   CHECK_OPTION_UNSET_OR_RANGE(threshold, -1, "the model's value", 0.0, 1.0);
   CHECK_OPTION_GE(min_pairs_per_image, 0);
   CHECK_OPTION_NUM_THREADS(num_threads);
+  CHECK_OPTION(embedding,
+               embedding.empty() || embedding == "vlad" ||
+                   embedding == "onnx" || embedding == "vlad+onnx" ||
+                   embedding == "imported",
+               "be empty (the model's; knn: vlad) or one of vlad, onnx, "
+               "vlad+onnx, imported");
+  onnx.Check();
+  CHECK_OPTION_GE(onnx_batch_size, 1);
+  if (embedding == "onnx" || embedding == "vlad+onnx") {
+    CHECK_OPTION(
+        onnx_path,
+        !onnx_path.empty(),
+        "name the ONNX network when --GcnMatching.embedding is " + embedding);
+    CHECK_OPTION(image_path,
+                 !image_path.empty(),
+                 "name the image folder (the one given to feature_extractor) "
+                 "when --GcnMatching.embedding is " +
+                     embedding);
+  }
+  if (embedding == "imported") {
+    CHECK_OPTION(descriptor_path,
+                 !descriptor_path.empty(),
+                 "name the descriptor file when --GcnMatching.embedding is "
+                 "imported");
+  }
 }
 
 std::string DefaultGcnModelPath() {
@@ -46,42 +72,166 @@ std::string DefaultGcnModelPath() {
   return ExistsFile(source_tree) ? source_tree : "";
 }
 
-EmbeddingMatrix ComputeModelEmbeddings(const GcnModel& model,
-                                       const Database& database,
-                                       const std::string& descriptor_path,
-                                       int num_threads,
-                                       std::vector<image_t>* image_ids) {
-  const GcnEmbeddingConfig& config = model.embedding;
-  EmbeddingMatrix embeddings;
-  if (config.type == "vlad") {
-    if (!descriptor_path.empty()) {
-      ThrowError(
-          "the GCN model was trained on its own VLAD embedding; imported "
-          "descriptors (--GcnMatching.descriptor_path) need a model trained "
-          "on them");
+namespace {
+
+const char kConcatenatedMagic[8] = {'C', 'G', 'C', 'N', 'V', '+', 'O', 'N'};
+
+void SplitConcatenatedBlob(const std::string& blob,
+                           std::string* vlad,
+                           std::string* cnn) {
+  auto fail = [] {
+    ThrowError("the GCN model's vlad+onnx embedding is malformed");
+  };
+  if (blob.size() < 8 + 16 || std::memcmp(blob.data(), kConcatenatedMagic, 8)) {
+    fail();
+  }
+  size_t pos = 8;
+  for (std::string* part : {vlad, cnn}) {
+    uint64_t size;
+    if (blob.size() - pos < 8) fail();
+    std::memcpy(&size, blob.data() + pos, 8);
+    pos += 8;
+    if (size > blob.size() - pos) fail();
+    *part = blob.substr(pos, size);
+    pos += size;
+  }
+  if (pos != blob.size()) fail();
+}
+
+}  // namespace
+
+GcnEmbeddingConfig MakeEmbeddingConfig(const VladEmbedding* vlad,
+                                       const CnnEmbeddingModel* cnn) {
+  THROW_CHECK(vlad != nullptr || cnn != nullptr);
+  GcnEmbeddingConfig config;
+  if (cnn == nullptr) {
+    config.type = "vlad";
+    config.dim = vlad->OutputDim();
+    config.blob = vlad->Serialize();
+  } else if (vlad == nullptr) {
+    config.type = "onnx";
+    config.dim = cnn->OutputDim();
+    config.blob = cnn->Serialize();
+  } else {
+    config.type = "vlad+onnx";
+    config.dim = vlad->OutputDim() + cnn->OutputDim();
+    config.blob.assign(kConcatenatedMagic, 8);
+    for (const std::string& part : {vlad->Serialize(), cnn->Serialize()}) {
+      const uint64_t size = part.size();
+      config.blob.append(reinterpret_cast<const char*>(&size), 8);
+      config.blob += part;
     }
-    const VladEmbedding vlad =
-        VladEmbedding::Deserialize(config.blob, "the GCN model's embedding");
-    embeddings =
-        ComputeDatabaseEmbeddings(database,
-                                  vlad,
-                                  image_ids,
-                                  DefaultEmbeddingCachePath(database.Path()),
-                                  num_threads);
-  } else if (StringStartsWith(config.type, "imported")) {
-    if (descriptor_path.empty()) {
+  }
+  return config;
+}
+
+ModelEmbedder::ModelEmbedder(const GcnEmbeddingConfig& config,
+                             const ModelEmbeddingOptions& options)
+    : type_(config.type), options_(options) {
+  const bool imported = StringStartsWith(type_, "imported");
+  if (type_ != "vlad" && type_ != "onnx" && type_ != "vlad+onnx" && !imported) {
+    ThrowError("the GCN model has an unknown embedding type \"", type_, "\"");
+  }
+  if (!options.embedding.empty() &&
+      options.embedding != (imported ? "imported" : type_)) {
+    ThrowError("the GCN model embeds with ",
+               type_,
+               " but --GcnMatching.embedding is ",
+               options.embedding,
+               "; train a model on it or leave the flag empty");
+  }
+  if (imported) {
+    if (options.descriptor_path.empty()) {
       ThrowError("the GCN model was trained on imported descriptors (",
-                 config.type,
+                 type_,
                  "); pass them with --GcnMatching.descriptor_path");
     }
-    embeddings =
-        MatchDescriptorsToImages(ReadGlobalDescriptors(descriptor_path),
-                                 database.ReadAllImages(),
-                                 image_ids);
-  } else {
-    ThrowError(
-        "the GCN model has an unknown embedding type \"", config.type, "\"");
+    return;
   }
+  if (!options.descriptor_path.empty()) {
+    ThrowError("the GCN model was trained on its own ",
+               type_,
+               " embedding; imported descriptors "
+               "(--GcnMatching.descriptor_path) need a model trained on them");
+  }
+  std::string vlad_blob = config.blob;
+  std::string cnn_blob = config.blob;
+  if (type_ == "vlad+onnx") {
+    SplitConcatenatedBlob(config.blob, &vlad_blob, &cnn_blob);
+  }
+  if (type_ != "onnx") {
+    vlad_ = VladEmbedding::Deserialize(vlad_blob, "the GCN model's embedding");
+  }
+  if (type_ == "vlad") return;
+  cnn_model_ =
+      CnnEmbeddingModel::Deserialize(cnn_blob, "the GCN model's embedding");
+  if (options.onnx_path.empty()) {
+    ThrowError("the GCN model embeds images with the ONNX network ",
+               cnn_model_.network_name,
+               " (checksum ",
+               FormatChecksum(cnn_model_.network_checksum),
+               "); pass it with ",
+               options.onnx_flag);
+  }
+  options.onnx.CheckAgainst(cnn_model_.options, "--GcnMatching.onnx_");
+  CnnEmbeddingOptions cnn = cnn_model_.options;
+  cnn.onnx_path = options.onnx_path;
+  cnn.batch_size = options.onnx_batch_size;
+  cnn.num_threads = options.num_threads;
+  cnn.progress_every = options.progress_every;
+  network_ = std::make_unique<CnnNetwork>(cnn);
+  cnn_model_.CheckNetwork(*network_, options.onnx_flag);
+}
+
+ModelEmbedder::~ModelEmbedder() = default;
+
+EmbeddingMatrix ModelEmbedder::EmbedDatabase(
+    const Database& database,
+    const std::string& image_path,
+    const std::string& cnn_cache_path,
+    std::vector<image_t>* image_ids) const {
+  if (StringStartsWith(type_, "imported")) {
+    return MatchDescriptorsToImages(
+        ReadGlobalDescriptors(options_.descriptor_path),
+        database.ReadAllImages(),
+        image_ids);
+  }
+  EmbeddingMatrix vlad;
+  if (type_ != "onnx") {
+    vlad = ComputeDatabaseEmbeddings(
+        database,
+        vlad_,
+        image_ids,
+        options_.use_vlad_cache ? DefaultEmbeddingCachePath(database.Path())
+                                : "",
+        options_.num_threads);
+    if (type_ == "vlad") return vlad;
+  }
+  const FloatMatrix raw = ComputeDatabaseCnnDescriptors(
+      database, *network_, image_path, cnn_cache_path, image_ids);
+  if (type_ == "onnx") return raw;
+  EmbeddingMatrix both(raw.rows(), vlad.cols() + raw.cols());
+  both << vlad, raw;
+  return both;
+}
+
+EmbeddingMatrix ModelEmbedder::Finalize(const EmbeddingMatrix& rows) const {
+  if (type_ == "onnx") return cnn_model_.Apply(rows);
+  if (type_ != "vlad+onnx") return rows;
+  const int vlad_dim = vlad_.OutputDim();
+  return ConcatenateEmbeddings(
+      rows.leftCols(vlad_dim),
+      cnn_model_.Apply(rows.rightCols(rows.cols() - vlad_dim)));
+}
+
+EmbeddingMatrix ComputeModelEmbeddings(const GcnModel& model,
+                                       const Database& database,
+                                       const ModelEmbeddingOptions& options,
+                                       const std::string& image_path,
+                                       std::vector<image_t>* image_ids) {
+  const ModelEmbedder embedder(model.embedding, options);
+  const EmbeddingMatrix embeddings = embedder.Finalize(embedder.EmbedDatabase(
+      database, image_path, DefaultCnnCachePath(database.Path()), image_ids));
   model.CheckEmbeddingDimension(static_cast<int>(embeddings.cols()));
   return embeddings;
 }
@@ -118,13 +268,16 @@ std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
   if (options.threshold >= 0) pairing.threshold = options.threshold;
   pairing.min_pairs_per_image = options.min_pairs_per_image;
   pairing.num_threads = options.num_threads;
+  ModelEmbeddingOptions embedding;
+  embedding.embedding = options.embedding;
+  embedding.descriptor_path = options.descriptor_path;
+  embedding.onnx_path = options.onnx_path;
+  embedding.onnx = options.onnx;
+  embedding.onnx_batch_size = options.onnx_batch_size;
+  embedding.num_threads = options.num_threads;
   std::vector<image_t> image_ids;
-  const EmbeddingMatrix embeddings =
-      ComputeModelEmbeddings(model,
-                             database,
-                             options.descriptor_path,
-                             options.num_threads,
-                             &image_ids);
+  const EmbeddingMatrix embeddings = ComputeModelEmbeddings(
+      model, database, embedding, options.image_path, &image_ids);
   return std::make_unique<GcnModelPairGenerator>(
       pairing, image_ids, embeddings, model);
 }
@@ -134,15 +287,12 @@ std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1) {
       stats.num_above_threshold < stats.num_candidates) {
     return "";
   }
-  return "gcn_matcher: warning: all " + std::to_string(stats.num_candidates) +
+  return "all " + std::to_string(stats.num_candidates) +
          " candidate pairs scored above the model's threshold: the GCN "
          "chose nothing beyond each image's k1 = " +
          std::to_string(k1) +
          " nearest neighbours; the model is likely not calibrated for "
-         "these images (docs/model_card.md). On photos of several "
-         "unrelated places try --GcnMatching.threshold 0.9; on scenes with "
-         "duplicate objects or repeated structure use --GcnMatching.pairing "
-         "knn --GcnMatching.k 5 or sequential_matcher.";
+         "these images (docs/model_card.md lists what to try)";
 }
 
 PairGeneratorSpec<GcnModelPairingOptions> GcnModelPairGeneratorSpec() {
@@ -174,6 +324,24 @@ PairGeneratorSpec<GcnModelPairingOptions> GcnModelPairGeneratorSpec() {
         "GcnMatching.descriptor_path",
         &options->descriptor_path,
         "imported global descriptors (.h5 | .npy | .txt)");
+    manager->AddDefaultOption(
+        "GcnMatching.embedding",
+        &options->embedding,
+        "vlad | onnx | vlad+onnx | imported; empty: the model's (gcn), vlad "
+        "(knn)");
+    manager->AddDefaultOption("GcnMatching.onnx_path",
+                              &options->onnx_path,
+                              "ONNX network for embedding=onnx (OpenCV DNN)");
+    manager->AddDefaultOption(
+        "GcnMatching.image_path",
+        &options->image_path,
+        "folder of the images (as given to feature_extractor); needed by "
+        "onnx");
+    AddCnnEmbeddingOverrideOptions(
+        manager, "GcnMatching.onnx_", &options->onnx);
+    manager->AddDefaultOption("GcnMatching.onnx_batch_size",
+                              &options->onnx_batch_size,
+                              "images per CNN forward pass");
     manager->AddDefaultOption("GcnMatching.num_threads",
                               &options->num_threads,
                               "threads for embedding and kNN (-1: all cores)");

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -14,6 +13,7 @@
 #include "util/file.h"
 #include "util/file_lock.h"
 #include "util/interrupt.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -54,9 +54,9 @@ void MatchOnWorkingCopy(const ColmapRunner& colmap,
                                 }),
                  pairs->end());
     summary->num_already_matched += num_pairs - pairs->size();
-    std::cerr << "gcn_matcher: resuming the interrupted matching kept in "
-              << work_path << " (" << num_pairs - pairs->size() << " of "
-              << num_pairs << " pairs were matched already)\n";
+    LOG(INFO) << "resuming the interrupted matching kept in " << work_path
+              << " (" << num_pairs - pairs->size() << " of " << num_pairs
+              << " pairs were matched already)";
   }
   const std::string todo_path = work_path + ".pairs.txt";
   const size_t block_size = static_cast<size_t>(options.block_size);
@@ -67,8 +67,8 @@ void MatchOnWorkingCopy(const ColmapRunner& colmap,
     const auto end =
         pairs->begin() + std::min(pairs->size(), (block + 1) * block_size);
     if (num_blocks > 1) {
-      std::cerr << "gcn_matcher: matching block " << block + 1 << "/"
-                << num_blocks << " (" << end - begin << " pairs)\n";
+      LOG(INFO) << "matching block " << block + 1 << "/" << num_blocks << " ("
+                << end - begin << " pairs)";
     }
     WritePairsFile(todo_path, std::vector<ImagePair>(begin, end), images);
     std::vector<std::string> args = {"--database_path",
@@ -107,6 +107,12 @@ void PairMatchingOptions::Check() const {
   CHECK_OPTION_GE(block_size, 1);
 }
 
+int EffectiveMinNumInliers(const PairMatchingOptions& options) {
+  return IntArgument(options.colmap_args,
+                     "SiftMatching.min_num_inliers",
+                     options.min_num_inliers);
+}
+
 PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
                                     const std::string& database_path,
                                     const std::vector<ImagePair>& pairs,
@@ -126,9 +132,7 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
-  const int min_num_inliers = IntArgument(options.colmap_args,
-                                          "SiftMatching.min_num_inliers",
-                                          options.min_num_inliers);
+  const int min_num_inliers = EffectiveMinNumInliers(options);
 
   std::vector<DatabaseImage> images;
   std::unordered_set<image_pair_t> pair_ids;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "scene/database.h"
 #include "util/types.h"
 
 namespace colmap_gcn {
@@ -14,8 +15,9 @@ struct PairMatchingOptions {
   std::string pairs_path = "";
 
   // Minimum inliers for a verified pair to count as useful (UM). Taken from
-  // --SiftMatching.min_num_inliers when that is among colmap_args.
-  int min_num_inliers = 15;
+  // --SiftMatching.min_num_inliers when that is among colmap_args (see
+  // EffectiveMinNumInliers).
+  int min_num_inliers = kDefaultMinNumInliers;
 
   // Optional scores parallel to the pairs (e.g. the GCN's), written as the
   // pairs file's third column, which COLMAP ignores.
@@ -32,6 +34,11 @@ struct PairMatchingOptions {
 
   void Check() const;
 };
+
+// The inlier count a verified pair needs (IsVerifiedTwoViewGeometry):
+// --SiftMatching.min_num_inliers from colmap_args, as COLMAP uses it, else
+// options.min_num_inliers.
+int EffectiveMinNumInliers(const PairMatchingOptions& options);
 
 // What matching a pair set cost and bought, in the paper's terms.
 struct PairMatchingSummary {

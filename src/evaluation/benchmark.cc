@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <ctime>
 #include <filesystem>
-#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -27,6 +26,7 @@
 #include "synthetic/pair_overlap.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -38,7 +38,7 @@ namespace {
 namespace fs = std::filesystem;
 
 void Progress(const std::string& scene, const std::string& message) {
-  std::cerr << "[gcn_benchmark] " << scene << ": " << message << std::endl;
+  LOG(INFO) << scene << ": " << message;
 }
 
 std::string FormatSeconds(double seconds) {
@@ -135,12 +135,11 @@ class BenchmarkRunner {
   // Runs (or reads from the cache) the matching and mapping of a method;
   // returns its run record. Matching and mapping are cached separately so
   // the exhaustive matches can serve the labels first.
-  JsonValue MatchMethod(const SceneContext& scene,
-                        const BenchmarkMethod& method);
-  JsonValue MapMethod(const SceneContext& scene, const BenchmarkMethod& method);
+  Json MatchMethod(const SceneContext& scene, const BenchmarkMethod& method);
+  Json MapMethod(const SceneContext& scene, const BenchmarkMethod& method);
   MethodResult EvaluateMethod(const SceneContext& scene,
                               const BenchmarkMethod& method,
-                              const JsonValue& run,
+                              const Json& run,
                               SceneResult* scene_result);
   std::unique_ptr<PairGenerator> CreateGenerator(
       const SceneContext& scene, const BenchmarkMethod& method) const;
@@ -175,7 +174,7 @@ void BenchmarkRunner::Extract(SceneContext* scene, SceneResult* result) {
   scene->base_db = JoinPaths(scene->dir, "base.db");
   if (ExistsFile(record_path) && ExistsFile(scene->base_db)) {
     result->extraction_seconds =
-        ReadJsonFile(record_path).GetDoubleOr("seconds", 0);
+        ReadJsonFile(record_path).value("seconds", 0.0);
     Progress(scene->dataset.name, "features cached in " + scene->base_db);
     return;
   }
@@ -209,7 +208,7 @@ void BenchmarkRunner::Extract(SceneContext* scene, SceneResult* result) {
   std::error_code ec;
   fs::rename(partial, scene->base_db, ec);
   if (ec) ThrowError("cannot rename ", partial, ": ", ec.message());
-  JsonValue record = JsonValue::Object();
+  Json record = Json::object();
   record["seconds"] = result->extraction_seconds;
   record["session"] = session_;
   WriteJsonFile(record_path, record);
@@ -310,7 +309,7 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
       case LabelSource::kExhaustiveReference: {
         const BenchmarkMethod exhaustive = ParseBenchmarkMethod("exhaustive");
         MatchMethod(*scene, exhaustive);
-        const JsonValue run = MapMethod(*scene, exhaustive);
+        const Json run = MapMethod(*scene, exhaustive);
         const SfmMetrics sfm = EvaluateSparseModels(
             JoinPaths(MethodDir(*scene, exhaustive), "sparse"),
             scene->images.size(),
@@ -369,25 +368,26 @@ std::unique_ptr<PairGenerator> BenchmarkRunner::CreateGenerator(
   return registry.Create(method.pairing, options, context);
 }
 
-JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
-                                       const BenchmarkMethod& method) {
+Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
+                                  const BenchmarkMethod& method) {
   const std::string dir = MethodDir(scene, method);
   const std::string run_path = JoinPaths(dir, "run.json");
   const std::string& name = scene.dataset.name;
   if (ExistsFile(run_path)) {
-    JsonValue run = ReadJsonFile(run_path);
+    Json run = ReadJsonFile(run_path);
     const bool thresholds_changed =
         method.IsOracle() &&
-        (run.GetDoubleOr("tau_mo", -1) != options_.labels.min_overlap ||
-         run.GetDoubleOr("tau_ct", -1) !=
-             options_.labels.min_common_track_ratio);
+        (run.value("tau_mo", -1.0) != options_.labels.min_overlap ||
+         run.value("tau_ct", -1.0) != options_.labels.min_common_track_ratio);
     // A "same pairs as" record is only valid while its owner is one of
     // this scene's runs.
-    const auto owner = pair_set_owners_.find(run.GetStringOr("pairs_hash", ""));
+    const auto owner =
+        pair_set_owners_.find(run.value("pairs_hash", std::string()));
     const bool stale_duplicate =
-        run.Has("same_as") && (owner == pair_set_owners_.end() ||
-                               owner->second != run.Get("same_as").AsString() ||
-                               owner->second == method.spec);
+        run.contains("same_as") &&
+        (owner == pair_set_owners_.end() ||
+         owner->second != run.at("same_as").get<std::string>() ||
+         owner->second == method.spec);
     if (!thresholds_changed && !stale_duplicate) {
       Progress(name, method.spec + ": matching cached");
       return run;
@@ -399,7 +399,7 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
   RemovePath(dir);
   CreateDirIfNotExists(dir);
 
-  JsonValue run = JsonValue::Object();
+  Json run = Json::object();
   run["method"] = method.spec;
   run["k"] = method.EffectiveK(scene.images.size());
   run["session"] = session_;
@@ -446,8 +446,8 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
     const PairMatchingSummary summary =
         MatchImagePairs(Colmap(scene), db, pairs, matching_options);
     run["status"] = "ok";
-    run["tam"] = JsonValue(static_cast<uint64_t>(summary.num_attempted_pairs));
-    run["um"] = JsonValue(static_cast<uint64_t>(summary.num_verified_pairs));
+    run["tam"] = summary.num_attempted_pairs;
+    run["um"] = summary.num_verified_pairs;
     run["matching_seconds"] = summary.matching_seconds;
     Progress(name,
              method.spec + ": TAM " +
@@ -463,12 +463,13 @@ JsonValue BenchmarkRunner::MatchMethod(const SceneContext& scene,
   return run;
 }
 
-JsonValue BenchmarkRunner::MapMethod(const SceneContext& scene,
-                                     const BenchmarkMethod& method) {
+Json BenchmarkRunner::MapMethod(const SceneContext& scene,
+                                const BenchmarkMethod& method) {
   const std::string dir = MethodDir(scene, method);
   const std::string run_path = JoinPaths(dir, "run.json");
-  JsonValue run = ReadJsonFile(run_path);
-  if (run.GetStringOr("status", "") != "ok" || run.Has("mapping_seconds")) {
+  Json run = ReadJsonFile(run_path);
+  if (run.value("status", std::string()) != "ok" ||
+      run.contains("mapping_seconds")) {
     return run;
   }
   const std::string sparse = JoinPaths(dir, "sparse");
@@ -505,7 +506,7 @@ JsonValue BenchmarkRunner::MapMethod(const SceneContext& scene,
       run["message"] = std::string("mapper: ") + error.what();
     }
     Progress(scene.dataset.name,
-             method.spec + ": " + run.GetStringOr("message", ""));
+             method.spec + ": " + run.value("message", std::string()));
   }
   run["mapping_seconds"] = timer.ElapsedSeconds();
   WriteJsonFile(run_path, run);
@@ -514,19 +515,19 @@ JsonValue BenchmarkRunner::MapMethod(const SceneContext& scene,
 
 MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
                                              const BenchmarkMethod& method,
-                                             const JsonValue& run,
+                                             const Json& run,
                                              SceneResult* scene_result) {
   MethodResult result;
   result.method = method.spec;
-  result.status = run.GetStringOr("status", "failed");
-  result.message = run.GetStringOr("message", "");
-  result.k = static_cast<int>(run.GetIntOr("k", 0));
-  result.session = run.GetStringOr("session", "");
-  result.pairing_seconds = run.GetDoubleOr("pairing_seconds", 0);
-  result.matching_seconds = run.GetDoubleOr("matching_seconds", 0);
-  result.mapping_seconds = run.GetDoubleOr("mapping_seconds", 0);
-  result.num_attempted = run.GetIntOr("tam", 0);
-  result.num_verified = run.GetIntOr("um", 0);
+  result.status = run.value("status", std::string("failed"));
+  result.message = run.value("message", std::string());
+  result.k = static_cast<int>(run.value("k", int64_t{0}));
+  result.session = run.value("session", std::string());
+  result.pairing_seconds = run.value("pairing_seconds", 0.0);
+  result.matching_seconds = run.value("matching_seconds", 0.0);
+  result.mapping_seconds = run.value("mapping_seconds", 0.0);
+  result.num_attempted = run.value("tam", size_t{0});
+  result.num_verified = run.value("um", size_t{0});
   const std::string dir = MethodDir(scene, method);
   const std::string pairs_path = JoinPaths(dir, "pairs.txt");
   if (!ExistsFile(pairs_path)) return result;
@@ -537,10 +538,9 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
   std::vector<ImageNamePair> verified;
   {
     const Database database(JoinPaths(dir, "database.db"));
-    const int min_num_inliers =
-        IntArgument(options_.matching_args,
-                    "SiftMatching.min_num_inliers",
-                    PairMatchingOptions().min_num_inliers);
+    PairMatchingOptions matching_options;
+    matching_options.colmap_args = options_.matching_args;
+    const int min_num_inliers = EffectiveMinNumInliers(matching_options);
     for (const TwoViewGeometryInfo& info :
          database.ReadTwoViewGeometryInfos()) {
       if (!IsVerifiedTwoViewGeometry(
@@ -655,15 +655,15 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
       }
     }
     if (duplicate) continue;
-    JsonValue run = MatchMethod(scene, method);
-    if (run.Has("same_as")) {
-      const std::string owner = run.Get("same_as").AsString();
+    Json run = MatchMethod(scene, method);
+    if (run.contains("same_as")) {
+      const std::string owner = run.at("same_as").get<std::string>();
       for (size_t earlier = 0; earlier < m; ++earlier) {
         if (result.methods[earlier].method != owner) continue;
         MethodResult copy = result.methods[earlier];
         copy.method = method.spec;
-        copy.k = static_cast<int>(run.GetIntOr("k", 0));
-        copy.pairing_seconds = run.GetDoubleOr("pairing_seconds", 0);
+        copy.k = static_cast<int>(run.value("k", int64_t{0}));
+        copy.pairing_seconds = run.value("pairing_seconds", 0.0);
         copy.message = "same pairs as " + owner;
         result.methods.push_back(copy);
         break;
@@ -671,13 +671,15 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
       if (result.methods.size() == m + 1) continue;
       // The owner is not in this run's results: match after all.
       RemovePath(JoinPaths(MethodDir(scene, method), "run.json"));
-      pair_set_owners_.erase(run.GetStringOr("pairs_hash", ""));
+      pair_set_owners_.erase(run.value("pairs_hash", std::string()));
       run = MatchMethod(scene, method);
     }
-    if (run.GetStringOr("status", "") == "ok" && run.Has("pairs_hash")) {
-      pair_set_owners_.emplace(run.Get("pairs_hash").AsString(), method.spec);
+    if (run.value("status", std::string()) == "ok" &&
+        run.contains("pairs_hash")) {
+      pair_set_owners_.emplace(run.at("pairs_hash").get<std::string>(),
+                               method.spec);
     }
-    if (run.GetStringOr("status", "") == "ok") {
+    if (run.value("status", std::string()) == "ok") {
       run = MapMethod(scene, method);
     }
     MethodResult method_result = EvaluateMethod(scene, method, run, &result);

@@ -5,12 +5,6 @@
 
 namespace colmap_gcn {
 
-double FMeasure(double precision, double recall) {
-  return precision + recall <= 0
-             ? 0.0
-             : 2.0 * precision * recall / (precision + recall);
-}
-
 RetrievalMetrics ComputeRetrievalMetrics(
     const std::vector<ImageNamePair>& pairs,
     const PairLabels& labels,
@@ -31,15 +25,13 @@ RetrievalMetrics ComputeRetrievalMetrics(
     if (labels.SharesNothing(name1, name2)) ++metrics.num_wrong_pairs;
   }
   metrics.num_matchable = labels.MatchablePairs(options).size();
-  if (metrics.num_labelled_pairs > 0) {
-    metrics.precision = static_cast<double>(metrics.num_true_positives) /
-                        metrics.num_labelled_pairs;
-  }
-  if (metrics.num_matchable > 0) {
-    metrics.recall =
-        static_cast<double>(metrics.num_true_positives) / metrics.num_matchable;
-  }
-  metrics.f_measure = FMeasure(metrics.precision, metrics.recall);
+  const PrecisionRecall scores =
+      ComputePrecisionRecall(metrics.num_true_positives,
+                             metrics.num_labelled_pairs,
+                             metrics.num_matchable);
+  metrics.precision = scores.precision;
+  metrics.recall = scores.recall;
+  metrics.f_measure = scores.f_measure;
   return metrics;
 }
 

@@ -4,6 +4,7 @@
 
 #include "evaluation/labels.h"
 #include "feature/pairs_io.h"
+#include "math/precision_recall.h"
 
 namespace colmap_gcn {
 
@@ -30,7 +31,5 @@ RetrievalMetrics ComputeRetrievalMetrics(
 // are means over scenes (not pooled), counts are sums.
 RetrievalMetrics AverageRetrievalMetrics(
     const std::vector<RetrievalMetrics>& per_scene);
-
-double FMeasure(double precision, double recall);
 
 }  // namespace colmap_gcn

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "controllers/pair_matching.h"
-#include "evaluation/json.h"
+#include "evaluation/json_file.h"
 #include "scene/camera_models.h"
 #include "scene/database.h"
 #include "scene/database_copy.h"
@@ -159,19 +159,14 @@ LabelMatchingSummary MatchPosePairsForLabels(
     summary.matching_seconds = matched.matching_seconds;
   }
 
-  JsonValue record = JsonValue::Object();
+  Json record = Json::object();
   record["max_viewpoint_change_deg"] = options.max_viewpoint_change_deg;
-  record["num_images"] = JsonValue(static_cast<uint64_t>(summary.num_images));
-  record["num_gt_images"] =
-      JsonValue(static_cast<uint64_t>(summary.num_gt_images));
-  record["pairs_total"] =
-      JsonValue(static_cast<uint64_t>(summary.num_pairs_total));
-  record["pairs_matched"] =
-      JsonValue(static_cast<uint64_t>(summary.num_pairs_matched));
-  record["pairs_skipped"] =
-      JsonValue(static_cast<uint64_t>(selection.num_skipped));
-  record["pairs_verified"] =
-      JsonValue(static_cast<uint64_t>(summary.num_pairs_verified));
+  record["num_images"] = summary.num_images;
+  record["num_gt_images"] = summary.num_gt_images;
+  record["pairs_total"] = summary.num_pairs_total;
+  record["pairs_matched"] = summary.num_pairs_matched;
+  record["pairs_skipped"] = selection.num_skipped;
+  record["pairs_verified"] = summary.num_pairs_verified;
   record["matching_seconds"] = summary.matching_seconds;
   WriteJsonFile(JoinPaths(work_dir, "label_matching.json"), record);
   return summary;

@@ -2,42 +2,34 @@
 
 namespace colmap_gcn {
 
-JsonValue RetrievalMetricsToJson(const RetrievalMetrics& metrics) {
-  JsonValue json = JsonValue::Object();
-  json["num_pairs"] = JsonValue(static_cast<uint64_t>(metrics.num_pairs));
-  json["num_labelled_pairs"] =
-      JsonValue(static_cast<uint64_t>(metrics.num_labelled_pairs));
-  json["num_matchable"] =
-      JsonValue(static_cast<uint64_t>(metrics.num_matchable));
-  json["num_true_positives"] =
-      JsonValue(static_cast<uint64_t>(metrics.num_true_positives));
-  json["num_wrong_pairs"] =
-      JsonValue(static_cast<uint64_t>(metrics.num_wrong_pairs));
+Json RetrievalMetricsToJson(const RetrievalMetrics& metrics) {
+  Json json = Json::object();
+  json["num_pairs"] = metrics.num_pairs;
+  json["num_labelled_pairs"] = metrics.num_labelled_pairs;
+  json["num_matchable"] = metrics.num_matchable;
+  json["num_true_positives"] = metrics.num_true_positives;
+  json["num_wrong_pairs"] = metrics.num_wrong_pairs;
   json["precision"] = metrics.precision;
   json["recall"] = metrics.recall;
   json["f_measure"] = metrics.f_measure;
   return json;
 }
 
-JsonValue SfmMetricsToJson(const SfmMetrics& metrics) {
-  JsonValue json = JsonValue::Object();
-  json["num_images"] = JsonValue(static_cast<uint64_t>(metrics.num_images));
-  json["num_registered"] =
-      JsonValue(static_cast<uint64_t>(metrics.num_registered));
-  json["num_models"] = JsonValue(static_cast<uint64_t>(metrics.num_models));
-  json["num_points3D"] = JsonValue(static_cast<uint64_t>(metrics.num_points3D));
-  json["num_observations"] =
-      JsonValue(static_cast<uint64_t>(metrics.num_observations));
+Json SfmMetricsToJson(const SfmMetrics& metrics) {
+  Json json = Json::object();
+  json["num_images"] = metrics.num_images;
+  json["num_registered"] = metrics.num_registered;
+  json["num_models"] = metrics.num_models;
+  json["num_points3D"] = metrics.num_points3D;
+  json["num_observations"] = metrics.num_observations;
   json["mean_track_length"] = metrics.mean_track_length;
   json["mean_reprojection_error"] = metrics.mean_reprojection_error;
   json["largest_model_path"] = metrics.largest_model_path;
   if (metrics.has_pose_errors) {
     const PoseErrors& pose = metrics.pose_errors;
-    JsonValue errors = JsonValue::Object();
-    errors["num_gt_images"] =
-        JsonValue(static_cast<uint64_t>(pose.num_gt_images));
-    errors["num_evaluated"] =
-        JsonValue(static_cast<uint64_t>(pose.num_evaluated));
+    Json errors = Json::object();
+    errors["num_gt_images"] = pose.num_gt_images;
+    errors["num_evaluated"] = pose.num_evaluated;
     errors["aligned"] = pose.aligned;
     errors["scene_extent"] = pose.scene_extent;
     errors["median_rotation_error_deg"] = pose.median_rotation_error_deg;
@@ -45,13 +37,13 @@ JsonValue SfmMetricsToJson(const SfmMetrics& metrics) {
     errors["fraction_rotation_ok"] = pose.fraction_rotation_ok;
     errors["fraction_position_ok"] = pose.fraction_position_ok;
     errors["fraction_accurate"] = pose.fraction_accurate;
-    JsonValue per_image = JsonValue::Array();
+    Json per_image = Json::array();
     for (size_t i = 0; i < pose.names.size(); ++i) {
-      JsonValue image = JsonValue::Object();
+      Json image = Json::object();
       image["name"] = pose.names[i];
       image["rotation_error_deg"] = pose.rotation_errors_deg[i];
       image["position_error"] = pose.position_errors[i];
-      per_image.Append(image);
+      per_image.push_back(image);
     }
     errors["images"] = per_image;
     json["pose_errors"] = errors;
@@ -59,17 +51,16 @@ JsonValue SfmMetricsToJson(const SfmMetrics& metrics) {
   return json;
 }
 
-JsonValue MethodResultToJson(const MethodResult& result) {
-  JsonValue json = JsonValue::Object();
+Json MethodResultToJson(const MethodResult& result) {
+  Json json = Json::object();
   json["method"] = result.method;
   json["status"] = result.status;
   json["message"] = result.message;
   json["k"] = result.k;
-  json["tam"] = JsonValue(static_cast<uint64_t>(result.num_attempted));
-  json["um"] = JsonValue(static_cast<uint64_t>(result.num_verified));
+  json["tam"] = result.num_attempted;
+  json["um"] = result.num_verified;
   json["um_over_tam"] = result.UsefulRatio();
-  json["num_verified_wrong"] =
-      JsonValue(static_cast<uint64_t>(result.num_verified_wrong));
+  json["num_verified_wrong"] = result.num_verified_wrong;
   json["pairing_seconds"] = result.pairing_seconds;
   json["matching_seconds"] = result.matching_seconds;
   json["mapping_seconds"] = result.mapping_seconds;
@@ -79,44 +70,42 @@ JsonValue MethodResultToJson(const MethodResult& result) {
   return json;
 }
 
-JsonValue SceneResultToJson(const SceneResult& result) {
-  JsonValue json = JsonValue::Object();
+Json SceneResultToJson(const SceneResult& result) {
+  Json json = Json::object();
   json["name"] = result.name;
   json["kind"] = result.kind;
   json["label_source"] = result.label_source;
   json["status"] = result.status;
   json["message"] = result.message;
-  json["num_images"] = JsonValue(static_cast<uint64_t>(result.num_images));
-  json["num_labelled_images"] =
-      JsonValue(static_cast<uint64_t>(result.num_labelled_images));
-  json["num_matchable_pairs"] =
-      JsonValue(static_cast<uint64_t>(result.num_matchable_pairs));
+  json["num_images"] = result.num_images;
+  json["num_labelled_images"] = result.num_labelled_images;
+  json["num_matchable_pairs"] = result.num_matchable_pairs;
   json["has_gt_cameras"] = result.has_gt_cameras;
   json["extraction_seconds"] = result.extraction_seconds;
-  JsonValue methods = JsonValue::Array();
+  Json methods = Json::array();
   for (const MethodResult& method : result.methods) {
-    methods.Append(MethodResultToJson(method));
+    methods.push_back(MethodResultToJson(method));
   }
   json["methods"] = methods;
-  JsonValue figures = JsonValue::Array();
-  for (const std::string& figure : result.figures) figures.Append(figure);
+  Json figures = Json::array();
+  for (const std::string& figure : result.figures) figures.push_back(figure);
   json["figures"] = figures;
   return json;
 }
 
-JsonValue BenchmarkResultsToJson(const BenchmarkResults& results) {
-  JsonValue json = JsonValue::Object();
+Json BenchmarkResultsToJson(const BenchmarkResults& results) {
+  Json json = Json::object();
   json["command"] = results.command;
   json["tau_mo"] = results.label_options.min_overlap;
   json["tau_ct"] = results.label_options.min_common_track_ratio;
   json["max_rotation_error_deg"] = results.pose_options.max_rotation_error_deg;
   json["max_position_error"] = results.pose_options.max_position_error;
-  JsonValue methods = JsonValue::Array();
-  for (const std::string& method : results.methods) methods.Append(method);
+  Json methods = Json::array();
+  for (const std::string& method : results.methods) methods.push_back(method);
   json["methods"] = methods;
-  JsonValue scenes = JsonValue::Array();
+  Json scenes = Json::array();
   for (const SceneResult& scene : results.scenes) {
-    scenes.Append(SceneResultToJson(scene));
+    scenes.push_back(SceneResultToJson(scene));
   }
   json["scenes"] = scenes;
   return json;

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "evaluation/json.h"
+#include "evaluation/json_file.h"
 #include "evaluation/labels.h"
 #include "evaluation/metrics.h"
 #include "evaluation/sfm_metrics.h"
@@ -58,10 +58,10 @@ struct BenchmarkResults {
   PoseErrorOptions pose_options;
 };
 
-JsonValue RetrievalMetricsToJson(const RetrievalMetrics& metrics);
-JsonValue SfmMetricsToJson(const SfmMetrics& metrics);
-JsonValue MethodResultToJson(const MethodResult& result);
-JsonValue SceneResultToJson(const SceneResult& result);
-JsonValue BenchmarkResultsToJson(const BenchmarkResults& results);
+Json RetrievalMetricsToJson(const RetrievalMetrics& metrics);
+Json SfmMetricsToJson(const SfmMetrics& metrics);
+Json MethodResultToJson(const MethodResult& result);
+Json SceneResultToJson(const SceneResult& result);
+Json BenchmarkResultsToJson(const BenchmarkResults& results);
 
 }  // namespace colmap_gcn

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 
 #include "controllers/colmap_runner.h"
 #include "controllers/gcn_matching.h"
@@ -12,6 +11,7 @@
 #include "scene/reconstruction_stats.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_manager.h"
 #include "util/string.h"
 #include "util/timer.h"
@@ -74,7 +74,7 @@ int RunGcnReconstructor(int argc, char** argv) {
     matching_options.matching.colmap_log_path = runner_options.log_path;
   }
 
-  std::cerr << "[1/3] feature_extractor\n";
+  LOG(INFO) << "[1/3] feature_extractor";
   Timer timer;
   std::vector<std::string> extraction_args = {
       "--database_path", database_path, "--image_path", image_path};
@@ -96,12 +96,12 @@ int RunGcnReconstructor(int argc, char** argv) {
     }
   }
 
-  std::cerr << "[2/3] gcn_matcher\n";
+  LOG(INFO) << "[2/3] gcn_matcher";
   matching_options.colmap_args = ArgumentsWithPrefix(args, {"SiftMatching."});
   const GcnMatchingReport matching =
       RunGcnMatching(database_path, matching_options);
 
-  std::cerr << "[3/3] mapper\n";
+  LOG(INFO) << "[3/3] mapper";
   CreateDirIfNotExists(sparse_path);
   if (!ListSparseModels(sparse_path).empty()) {
     ThrowError(sparse_path,

@@ -83,21 +83,33 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
                                                         shape.gcn_dims.end()));
   float* h = ws->a.data();
   {
+    // Features c (e_v - e_q): the projections are linear, so the factor c
+    // scales the projected rows.
+    const float c =
+        QesFeatureFactor(subgraph, embeddings_, model_.feature_scaling);
     const float* pq = projected_.data() + subgraph.query * pstride;
     const auto b1 = params.GcnBias(0);
     std::vector<float> base_a(h1), base_b(h1);
     for (int j = 0; j < h1; ++j) {
-      base_a[j] = b1(j) - pq[j] - offset_(j);
-      base_b[j] = pq[h1 + j] + offset_(h1 + j);
+      base_a[j] = b1(j) - c * pq[j] - offset_(j);
+      base_b[j] = c * pq[h1 + j] + offset_(h1 + j);
     }
     for (int i = 0; i < rows1; ++i) {
       float* out = h + static_cast<long>(i) * h1;
       const float* pa = projected_.data() + subgraph.nodes[i] * pstride;
       const float gi = g1[i];
-      for (int j = 0; j < h1; ++j) out[j] = pa[j] + base_a[j] - gi * base_b[j];
+      if (c == 1.f) {
+        for (int j = 0; j < h1; ++j) {
+          out[j] = pa[j] + base_a[j] - gi * base_b[j];
+        }
+      } else {
+        for (int j = 0; j < h1; ++j) {
+          out[j] = c * pa[j] + base_a[j] - gi * base_b[j];
+        }
+      }
       for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
         Axpy(h1,
-             g.values[e],
+             c * g.values[e],
              projected_.data() + subgraph.nodes[g.columns[e]] * pstride + h1,
              out);
       }

@@ -79,7 +79,7 @@ void GcnModel::CheckEmbeddingDimension(int dim) const {
 RowMatrix<float> GcnModel::NodeFeatures(
     const QuerySubgraph& subgraph, const EmbeddingMatrix& embeddings) const {
   CheckEmbeddingDimension(static_cast<int>(embeddings.cols()));
-  RowMatrix<float> x = QesFeatures(subgraph, embeddings);
+  RowMatrix<float> x = QesFeatures(subgraph, embeddings, feature_scaling);
   for (int i = 0; i < x.rows(); ++i) {
     x.row(i) = ((x.row(i) - input_shift.transpose()).array() *
                 input_scale.transpose().array())

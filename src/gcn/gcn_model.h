@@ -160,6 +160,8 @@ struct GcnModelInfo {
 struct GcnModel {
   GcnShape shape;
   GcnAggregation aggregation = GcnAggregation::kSymmetric;
+  // Per-query scaling of the node features, before the standardisation.
+  QesFeatureScaling feature_scaling = QesFeatureScaling::kNone;
   // Fixed input standardisation x' = (x - input_shift) .* input_scale applied
   // to the QES node features (replaces gcn_clustering's BatchNorm1d without
   // affine; estimated once from training subgraphs). Size input_dim.

@@ -10,8 +10,8 @@
 namespace colmap_gcn {
 
 struct GcnPairingOptions {
-  // QES at test time (paper Sec. 4: k1 = 100, k2 = 5, u = 10; the issue's
-  // benchmark setting u = 5). All are capped at N - 1 for small collections.
+  // QES at test time (paper Sec. 4: k1 = 100, k2 = 5, u = 10; u = 5 is the
+  // benchmark's setting). All are capped at N - 1 for small collections.
   int k1 = 100;
   int k2 = 5;
   int u = 5;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -13,6 +12,7 @@
 #include "gcn/gcn_inference.h"
 #include "gcn/gcn_network.h"
 #include "util/error.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/threading.h"
 #include "util/timer.h"
@@ -213,21 +213,17 @@ void GcnTrainingOptions::Check() const {
   CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
-double GcnClassificationStats::Precision() const {
-  const int64_t predicted = true_positives + false_positives;
-  return predicted > 0 ? static_cast<double>(true_positives) / predicted : 0.0;
+PrecisionRecall GcnClassificationStats::Scores() const {
+  return ComputePrecisionRecall(true_positives,
+                                true_positives + false_positives,
+                                true_positives + false_negatives);
 }
 
-double GcnClassificationStats::Recall() const {
-  const int64_t actual = true_positives + false_negatives;
-  return actual > 0 ? static_cast<double>(true_positives) / actual : 0.0;
-}
+double GcnClassificationStats::Precision() const { return Scores().precision; }
 
-double GcnClassificationStats::F() const {
-  const double p = Precision();
-  const double r = Recall();
-  return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
-}
+double GcnClassificationStats::Recall() const { return Scores().recall; }
+
+double GcnClassificationStats::F() const { return Scores().f_measure; }
 
 double AveragePrecision(const std::vector<float>& scores,
                         const std::vector<uint8_t>& relevant) {
@@ -253,10 +249,6 @@ double GcnClassificationStats::MeanAveragePrecision() const {
                                 : 0.0;
 }
 
-void PrintGcnTrainingLog(const std::string& line) {
-  std::cout << line << std::endl;
-}
-
 GcnTrainer::GcnTrainer(const GcnTrainingOptions& options) : options_(options) {}
 
 GcnModel GcnTrainer::Train(
@@ -265,9 +257,8 @@ GcnModel GcnTrainer::Train(
   const GcnTrainingOptions& o = options_;
   o.Check();
   if (scenes.empty()) ThrowError("no training scenes");
-  auto log = [&](const std::string& line) {
-    if (o.log) o.log(line);
-  };
+  // One line per epoch and a few set-up lines.
+  const auto log = [](const std::string& line) { LOG(INFO) << line; };
   const int threads = EffectiveNumThreads(o.num_threads);
   const int dim = static_cast<int>(scenes[0].embeddings.cols());
   for (const auto* list : {&scenes, &validation_scenes}) {
@@ -320,6 +311,7 @@ GcnModel GcnTrainer::Train(
   GcnShape shape = o.shape;
   shape.input_dim = dim;
   GcnModel model = InitializeGcnModel(shape, o.aggregation, o.seed);
+  model.feature_scaling = o.feature_scaling;
   const bool prior = o.initialization == GcnInitialization::kDistancePrior;
   BuilderPool pool(prepared, threads);
 
@@ -336,12 +328,14 @@ GcnModel GcnTrainer::Train(
         0, static_cast<int>(sampled.size()), threads, [&](int s, int t) {
           QuerySubgraph subgraph;
           pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
-          const auto x = QesFeatures(
-              subgraph, prepared[sampled[s].scene].scene->embeddings);
-          const Eigen::MatrixXd xd = x.cast<double>();
+          const Eigen::MatrixXd xd =
+              QesFeatures(subgraph,
+                          prepared[sampled[s].scene].scene->embeddings,
+                          o.feature_scaling)
+                  .cast<double>();
           sums[s] = xd.colwise().sum().transpose();
           squares[s] = xd.array().square().colwise().sum().transpose();
-          counts[s] = x.rows();
+          counts[s] = xd.rows();
         });
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim);
     Eigen::VectorXd square = Eigen::VectorXd::Zero(dim);
@@ -435,8 +429,8 @@ GcnModel GcnTrainer::Train(
 
   // Optimiser state.
   std::vector<float>& params = model.params.Values();
-  std::vector<float> state1(params.size(), 0.f);
-  std::vector<float> state2(params.size(), 0.f);
+  std::vector<float> state1(params.size());  // zeros
+  std::vector<float> state2(params.size());
   int64_t step = 0;
   std::vector<GcnParameters<float>> sample_grads(
       std::min<size_t>(o.batch_size, train_samples.size()),
@@ -599,6 +593,10 @@ GcnModel GcnTrainer::Train(
           << " initialisation; " << train_samples.size() << " train / "
           << val_samples.size() << " val subgraphs; best epoch " << best_epoch
           << " of " << history_.size();
+    if (o.feature_scaling != QesFeatureScaling::kNone) {
+      notes << "; " << QesFeatureScalingName(o.feature_scaling)
+            << " feature scaling";
+    }
     if (best_epoch > 0 && !val_samples.empty()) {
       notes << " (val " << FormatStats(history_[best_epoch - 1].validation)
             << ")";

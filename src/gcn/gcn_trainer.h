@@ -1,13 +1,13 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "gcn/gcn_model.h"
 #include "gcn/query_enclosing_subgraph.h"
+#include "math/precision_recall.h"
 #include "retrieval/knn.h"
 #include "util/option_check.h"
 
@@ -23,10 +23,10 @@ struct GcnTrainingScene {
   // Labelled pairs whose images share nothing (no surface, no 3D point): a
   // match between them can only be wrong. Evaluation only; may be empty.
   std::vector<std::pair<int, int>> unrelated_pairs;
+  // A collection of scenes ("a+b"): the part each row comes from, so pairs
+  // across parts can be counted. Empty for a single scene.
+  std::vector<int> part_of_row;
 };
-
-// Prints the line to stdout (the default training log).
-void PrintGcnTrainingLog(const std::string& line);
 
 // How training starts (GcnTrainingOptions::initialization).
 enum class GcnInitialization { kXavier, kDistancePrior };
@@ -42,6 +42,8 @@ struct GcnTrainingOptions {
   // Network; shape.input_dim is taken from the embeddings.
   GcnShape shape;
   GcnAggregation aggregation = GcnAggregation::kSymmetric;
+  // Per-query scaling of the node features (stored in the model).
+  QesFeatureScaling feature_scaling = QesFeatureScaling::kNone;
 
   // kXavier (gcn_clustering's random start) or kDistancePrior: start
   // from the context-aware distance classifier (InitializeDistancePrior)
@@ -98,10 +100,6 @@ struct GcnTrainingOptions {
   uint32_t seed = 0;
   // Threads; -1 = all cores. The result does not depend on it.
   int num_threads = -1;
-  // Called with one line per epoch (and a few set-up lines); default prints
-  // to stdout. Set to an empty function to silence.
-  std::function<void(const std::string&)> log = PrintGcnTrainingLog;
-
   // Throws OptionError naming the first invalid field.
   void Check() const;
 };
@@ -116,6 +114,7 @@ struct GcnClassificationStats {
   // over the queries with at least one matchable node (threshold free).
   double average_precision_sum = 0;
   int64_t num_ranked_queries = 0;
+  PrecisionRecall Scores() const;
   double Precision() const;
   double Recall() const;
   double F() const;

@@ -147,6 +147,12 @@ std::string SerializeGcnModel(const GcnModel& model) {
     s.Put<int32_t>(static_cast<int32_t>(model.aggregation));
     payload.PutSection("NETS", s.Bytes());
   }
+  // Only when not the default, so models without it stay byte-identical.
+  if (model.feature_scaling != QesFeatureScaling::kNone) {
+    Writer s;
+    s.Put<int32_t>(static_cast<int32_t>(model.feature_scaling));
+    payload.PutSection("FEAT", s.Bytes());
+  }
   {
     Writer s;
     s.PutFloats(model.input_shift.data(), model.input_shift.size());
@@ -281,6 +287,18 @@ GcnModel DeserializeGcnModel(const std::string& bytes,
                  aggregation);
     }
     model.aggregation = static_cast<GcnAggregation>(aggregation);
+    r.ExpectEnd();
+  }
+  if (sections.count("FEAT")) {
+    Reader r = section("FEAT");
+    const int32_t scaling = r.Get<int32_t>();
+    if (scaling != 0 && scaling != 1) {
+      ThrowError("GCN model file ",
+                 source,
+                 " has an unknown feature scaling ",
+                 scaling);
+    }
+    model.feature_scaling = static_cast<QesFeatureScaling>(scaling);
     r.ExpectEnd();
   }
   {

@@ -165,15 +165,55 @@ QuerySubgraph BuildQuerySubgraph(const KnnGraph& knn,
   return subgraph;
 }
 
+const char* QesFeatureScalingName(QesFeatureScaling scaling) {
+  switch (scaling) {
+    case QesFeatureScaling::kNone:
+      return "none";
+    case QesFeatureScaling::kQueryScale:
+      return "query";
+  }
+  return "unknown";
+}
+
+const EnumNames<QesFeatureScaling>& QesFeatureScalingNames() {
+  static const EnumNames<QesFeatureScaling> names = {
+      {"none", QesFeatureScaling::kNone},
+      {"query", QesFeatureScaling::kQueryScale}};
+  return names;
+}
+
+float QesFeatureFactor(const QuerySubgraph& subgraph,
+                       const EmbeddingMatrix& embeddings,
+                       QesFeatureScaling scaling) {
+  if (scaling == QesFeatureScaling::kNone || subgraph.num_one_hop == 0) {
+    return 1.f;
+  }
+  // In double, node by node in order: the same factor whatever the thread.
+  double sum = 0;
+  for (int i = 0; i < subgraph.num_one_hop; ++i) {
+    sum += (embeddings.row(subgraph.nodes[i]) - embeddings.row(subgraph.query))
+               .cast<double>()
+               .squaredNorm();
+  }
+  const double mean_square =
+      sum / (static_cast<double>(subgraph.num_one_hop) * embeddings.cols());
+  if (!(mean_square > 1e-24)) return 1.f;
+  return static_cast<float>(1.0 / std::sqrt(mean_square));
+}
+
 Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
-QesFeatures(const QuerySubgraph& subgraph, const EmbeddingMatrix& embeddings) {
+QesFeatures(const QuerySubgraph& subgraph,
+            const EmbeddingMatrix& embeddings,
+            QesFeatureScaling scaling) {
   const int n = subgraph.NumNodes();
+  const float factor = QesFeatureFactor(subgraph, embeddings, scaling);
   Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x(
       n, embeddings.cols());
   for (int i = 0; i < n; ++i) {
     x.row(i) =
         embeddings.row(subgraph.nodes[i]) - embeddings.row(subgraph.query);
   }
+  if (factor != 1.f) x *= factor;
   return x;
 }
 

@@ -38,6 +38,22 @@ const char* GcnAggregationName(GcnAggregation aggregation);
 // "symmetric", "row": the names of --GcnTraining.aggregation.
 const EnumNames<GcnAggregation>& GcnAggregationNames();
 
+// How the QES node features x_v - x_q are scaled before the network.
+enum class QesFeatureScaling : int {
+  // As they are (paper Eq. 2).
+  kNone = 0,
+  // Divided by the query's own neighbourhood scale sigma_q, the RMS over
+  // its 1-hop nodes and dimensions of x_v - x_q. Absolute embedding
+  // distances differ between collections (renders and photos, objects and
+  // streets) by more than the gap between matchable and unrelated
+  // neighbours; relative ones travel.
+  kQueryScale = 1,
+};
+
+const char* QesFeatureScalingName(QesFeatureScaling scaling);
+// "none", "query": the names of --GcnTraining.feature_scaling.
+const EnumNames<QesFeatureScaling>& QesFeatureScalingNames();
+
 // The nodes and undirected edges of one QES. Nodes are collection indices;
 // nodes[0, num_one_hop) are the 1-hop nodes in kNN order, the rest the 2-hop
 // nodes in discovery order (1-hop node by 1-hop node, each in kNN order).
@@ -102,8 +118,17 @@ KnnGraph ComputeKnnForQes(const EmbeddingMatrix& embeddings,
 // qes with k1, k2, u capped at n - 1.
 QesOptions CapQesOptions(const QesOptions& qes, int num_images);
 
-// Node features of a QES, paper Eq. 2: row i = e(nodes[i]) - e(query).
+// Node features of a QES, paper Eq. 2: row i = e(nodes[i]) - e(query),
+// times QesFeatureFactor.
 Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
-QesFeatures(const QuerySubgraph& subgraph, const EmbeddingMatrix& embeddings);
+QesFeatures(const QuerySubgraph& subgraph,
+            const EmbeddingMatrix& embeddings,
+            QesFeatureScaling scaling = QesFeatureScaling::kNone);
+
+// The factor every node feature of the QES is multiplied by: 1, or
+// 1 / sigma_q (1 when the 1-hop nodes coincide with the query).
+float QesFeatureFactor(const QuerySubgraph& subgraph,
+                       const EmbeddingMatrix& embeddings,
+                       QesFeatureScaling scaling);
 
 }  // namespace colmap_gcn

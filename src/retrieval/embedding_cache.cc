@@ -5,12 +5,12 @@
 #include "retrieval/embedding_cache.h"
 
 #include <cstring>
-#include <iostream>
 #include <unordered_map>
 
 #include "retrieval/hash.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/threading.h"
 
 namespace colmap_gcn {
@@ -87,8 +87,7 @@ void WriteCache(const std::string& path,
     WriteFileAtomically(path, out);
   } catch (const Error& error) {
     // A read-only folder only loses the cache.
-    std::cerr << "warning: embedding cache not written: " << error.what()
-              << "\n";
+    LOG(WARNING) << "embedding cache not written: " << error.what();
   }
 }
 

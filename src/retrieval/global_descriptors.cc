@@ -1,13 +1,13 @@
 #include "retrieval/global_descriptors.h"
 
 #include <cstdio>
-#include <iostream>
 
 #include "retrieval/descriptor_import.h"
 #include "retrieval/embedding_cache.h"
 #include "retrieval/hash.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/string.h"
 
@@ -15,6 +15,8 @@ namespace colmap_gcn {
 
 void GlobalDescriptorOptions::Check() const {
   vlad.Check();
+  CHECK_OPTION_ONE_OF(embedding, "vlad", "onnx", "vlad+onnx");
+  cnn.Check();
   CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
@@ -82,8 +84,7 @@ VladEmbedding LoadOrTrainSelfEmbedding(const Database& database,
       embedding.Write(model_path);
       WriteFileAtomically(key_path, key + "\n");
     } catch (const Error& error) {
-      std::cerr << "warning: self-trained VLAD model not cached: "
-                << error.what() << "\n";
+      LOG(WARNING) << "self-trained VLAD model not cached: " << error.what();
     }
   }
   return embedding;
@@ -99,16 +100,32 @@ EmbeddingMatrix ComputeGlobalDescriptors(const Database& database,
         database.ReadAllImages(),
         image_ids);
   }
+  EmbeddingMatrix cnn_embeddings;
+  if (options.embedding != "vlad") {
+    CnnEmbeddingOptions cnn = options.cnn;
+    cnn.num_threads = options.num_threads;
+    const CnnNetwork network(cnn);
+    cnn_embeddings =
+        MakeCnnEmbeddingModel(network).Apply(ComputeDatabaseCnnDescriptors(
+            database,
+            network,
+            options.image_path,
+            options.use_cache ? DefaultCnnCachePath(database.Path()) : "",
+            image_ids));
+    if (options.embedding == "onnx") return cnn_embeddings;
+  }
   const VladEmbedding embedding =
       options.embedding_path.empty()
           ? LoadOrTrainSelfEmbedding(database, options.vlad, options.use_cache)
           : VladEmbedding::Read(options.embedding_path);
-  return ComputeDatabaseEmbeddings(
+  const EmbeddingMatrix vlad_embeddings = ComputeDatabaseEmbeddings(
       database,
       embedding,
       image_ids,
       options.use_cache ? DefaultEmbeddingCachePath(database.Path()) : "",
       options.num_threads);
+  if (options.embedding == "vlad") return vlad_embeddings;
+  return ConcatenateEmbeddings(vlad_embeddings, cnn_embeddings);
 }
 
 }  // namespace colmap_gcn

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "retrieval/cnn_embedding.h"
 #include "retrieval/knn.h"
 #include "retrieval/vlad.h"
 #include "scene/database.h"
@@ -21,6 +22,15 @@ struct GlobalDescriptorOptions {
 
   // Training options for the self-trained model.
   VladOptions vlad;
+
+  // The embedding when no descriptors are imported: vlad | onnx (a CNN on
+  // the image files, centred, no PCA) | vlad+onnx (both, each half).
+  std::string embedding = "vlad";
+
+  // The CNN (embedding = onnx | vlad+onnx) and the folder of the images
+  // (database names are relative to it), needed to run it.
+  CnnEmbeddingOptions cnn;
+  std::string image_path = "";
 
   // Keep "<database>.gcn-embedding.bin" (and the self-trained model) beside
   // the database, keyed on each image's features and the model checksum.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "math/dense_product.h"
+#include "retrieval/knn_graph_init.h"
 #include "util/error.h"
 #include "util/option_check.h"
 #include "util/threading.h"
@@ -100,18 +101,26 @@ class TopKHeaps {
 
 }  // namespace
 
-KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
-                         const KnnOptions& options) {
+KnnGraph AllocateKnnGraph(const EmbeddingMatrix& embeddings,
+                          const KnnOptions& options) {
   options.Check();
   if (!embeddings.allFinite()) {
     ThrowError("kNN input has non-finite (NaN or infinite) values");
   }
   const int num_rows = static_cast<int>(embeddings.rows());
-  const int dim = static_cast<int>(embeddings.cols());
   const int k = std::max(0, std::min(options.k, num_rows - 1));
   KnnGraph graph;
   graph.indices.resize(num_rows, k);
   graph.similarities.resize(num_rows, k);
+  return graph;
+}
+
+KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
+                         const KnnOptions& options) {
+  KnnGraph graph = AllocateKnnGraph(embeddings, options);
+  const int num_rows = graph.NumImages();
+  const int dim = static_cast<int>(embeddings.cols());
+  const int k = graph.K();
   if (k == 0) {
     return graph;
   }

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "retrieval/knn.h"
-#include "util/error.h"
+#include "retrieval/knn_graph_init.h"
 
 namespace colmap_gcn {
 
@@ -14,16 +14,10 @@ bool FaissAvailable() { return true; }
 
 KnnGraph ComputeApproximateKnn(const EmbeddingMatrix& embeddings,
                                const KnnOptions& options) {
-  options.Check();
-  if (!embeddings.allFinite()) {
-    ThrowError("kNN input has non-finite (NaN or infinite) values");
-  }
-  const int num_rows = static_cast<int>(embeddings.rows());
+  KnnGraph graph = AllocateKnnGraph(embeddings, options);
+  const int num_rows = graph.NumImages();
   const int dim = static_cast<int>(embeddings.cols());
-  const int k = std::max(0, std::min(options.k, num_rows - 1));
-  KnnGraph graph;
-  graph.indices.resize(num_rows, k);
-  graph.similarities.resize(num_rows, k);
+  const int k = graph.K();
   if (k == 0) {
     return graph;
   }

@@ -12,8 +12,49 @@ namespace colmap_gcn {
 void KnnPairingOptions::Check() const {
   CHECK_OPTION_GE(k, 1);
   descriptors.Check();
+  CHECK_OPTION(embedding,
+               embedding.empty() || embedding == "vlad" ||
+                   embedding == "onnx" || embedding == "vlad+onnx" ||
+                   embedding == "imported",
+               "be empty (vlad, or the imported descriptors) or one of vlad, "
+               "onnx, vlad+onnx, imported");
+  onnx.Check();
+  if (embedding == "onnx" || embedding == "vlad+onnx") {
+    CHECK_OPTION(
+        descriptors.cnn.onnx_path,
+        !descriptors.cnn.onnx_path.empty(),
+        "name the ONNX network when --GcnMatching.embedding is " + embedding);
+    CHECK_OPTION(descriptors.image_path,
+                 !descriptors.image_path.empty(),
+                 "name the image folder (the one given to feature_extractor) "
+                 "when --GcnMatching.embedding is " +
+                     embedding);
+  }
+  if (embedding == "imported") {
+    CHECK_OPTION(descriptors.descriptor_path,
+                 !descriptors.descriptor_path.empty(),
+                 "name the descriptor file when --GcnMatching.embedding is "
+                 "imported");
+  }
   CHECK_OPTION_NUM_THREADS(num_threads);
   CHECK_OPTION_GE(block_size, 1);
+}
+
+GlobalDescriptorOptions KnnPairingOptions::Descriptors() const {
+  GlobalDescriptorOptions resolved = descriptors;
+  if (embedding == "imported") {
+    resolved.embedding = "vlad";  // descriptor_path takes over
+  } else if (!embedding.empty()) {
+    if (!descriptors.descriptor_path.empty()) {
+      ThrowError(
+          "--GcnMatching.descriptor_path imports descriptors; it cannot be "
+          "combined with --GcnMatching.embedding ",
+          embedding);
+    }
+    resolved.embedding = embedding;
+  }
+  resolved.cnn = onnx.ApplyTo(descriptors.cnn);
+  return resolved;
 }
 
 std::vector<ImagePair> KnnGraphToPairs(const KnnGraph& graph,
@@ -46,7 +87,7 @@ KnnPairGenerator::KnnPairGenerator(const KnnPairingOptions& options,
                                    const Database& database)
     : options_(options) {
   options_.Check();
-  GlobalDescriptorOptions descriptor_options = options_.descriptors;
+  GlobalDescriptorOptions descriptor_options = options_.Descriptors();
   descriptor_options.num_threads = options_.num_threads;
   descriptor_options.vlad.num_threads = options_.num_threads;
   std::vector<image_t> image_ids;
@@ -92,6 +133,15 @@ PairGeneratorSpec<KnnPairingOptions> KnnPairGeneratorSpec() {
         "GcnMatching.descriptor_path",
         &options->descriptors.descriptor_path,
         "imported global descriptors (.h5 | .npy | .txt)");
+    manager->AddDefaultOption("GcnMatching.embedding", &options->embedding);
+    manager->AddDefaultOption("GcnMatching.onnx_path",
+                              &options->descriptors.cnn.onnx_path);
+    manager->AddDefaultOption("GcnMatching.image_path",
+                              &options->descriptors.image_path);
+    AddCnnEmbeddingOverrideOptions(
+        manager, "GcnMatching.onnx_", &options->onnx);
+    manager->AddDefaultOption("GcnMatching.onnx_batch_size",
+                              &options->descriptors.cnn.batch_size);
     manager->AddDefaultOption("GcnMatching.num_threads",
                               &options->num_threads,
                               "threads for embedding and kNN (-1: all cores)");

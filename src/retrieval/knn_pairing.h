@@ -1,9 +1,11 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "feature/pair_generator_spec.h"
 #include "feature/pairing.h"
+#include "retrieval/cnn_embedding.h"
 #include "retrieval/global_descriptors.h"
 #include "retrieval/knn.h"
 #include "scene/database.h"
@@ -18,6 +20,16 @@ struct KnnPairingOptions {
   // Where the global descriptors come from.
   GlobalDescriptorOptions descriptors;
 
+  // The embedding as --GcnMatching.embedding names it: "" keeps
+  // descriptors.embedding (imported descriptors when descriptor_path is
+  // set); vlad | onnx | vlad+onnx replace it; imported takes
+  // descriptors.descriptor_path. Resolved by Descriptors().
+  std::string embedding = "";
+
+  // The CNN preprocessing the user set; -1 keeps descriptors.cnn's
+  // (MobileNetV2's).
+  CnnEmbeddingOverrides onnx;
+
   // See KnnOptions::method.
   KnnMethod knn_method = KnnMethod::kExact;
 
@@ -29,6 +41,10 @@ struct KnnPairingOptions {
 
   // Throws OptionError naming the first invalid field.
   void Check() const;
+
+  // descriptors with embedding and onnx applied. Throws Error when
+  // imported descriptors are combined with a computed embedding.
+  GlobalDescriptorOptions Descriptors() const;
 };
 
 // The unordered pairs {i, j} for j among the k nearest neighbours of i, each
@@ -64,7 +80,7 @@ class KnnPairGenerator : public PairGenerator {
 };
 
 // --GcnMatching.pairing knn (--GcnMatching.k, embedding_path,
-// descriptor_path, num_threads).
+// descriptor_path, embedding, onnx_path, image_path, onnx_*, num_threads).
 PairGeneratorSpec<KnnPairingOptions> KnnPairGeneratorSpec();
 
 }  // namespace colmap_gcn

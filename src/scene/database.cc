@@ -655,18 +655,4 @@ void Database::UpdateCamera(const DatabaseCamera& camera) {
   }
 }
 
-void Database::ClearMatchesAndTwoViewGeometries() {
-  RequireWritable();
-  // One transaction, so a failure cannot leave matches without geometries.
-  Statement(db_, path_, "BEGIN IMMEDIATE").Execute();
-  try {
-    Statement(db_, path_, "DELETE FROM matches").Execute();
-    Statement(db_, path_, "DELETE FROM two_view_geometries").Execute();
-    Statement(db_, path_, "COMMIT").Execute();
-  } catch (...) {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
-}
-
 }  // namespace colmap_gcn

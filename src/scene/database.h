@@ -41,11 +41,15 @@ enum class TwoViewGeometryConfig : int {
   kMultiple = 8,
 };
 
-// A pair counts as verified, as COLMAP's mapper sees it, when its config is
-// one of {2,3,4,5,6,8} and it has at least min_num_inliers inlier matches.
+// COLMAP's default --SiftMatching.min_num_inliers.
+constexpr int kDefaultMinNumInliers = 15;
+
+// The one rule for a verified pair, as COLMAP's mapper sees it: its config
+// is one of {2,3,4,5,6,8} and it has at least min_num_inliers inlier
+// matches.
 bool IsVerifiedTwoViewGeometry(int config,
                                size_t num_inliers,
-                               size_t min_num_inliers);
+                               size_t min_num_inliers = kDefaultMinNumInliers);
 
 struct DatabaseCamera {
   camera_t camera_id = kInvalidCameraId;
@@ -145,9 +149,8 @@ class Database {
   bool ExistsTwoViewGeometry(image_t image_id1, image_t image_id2) const;
 
   // Writing (requires kReadWrite). Used to set ground-truth intrinsics before
-  // point_triangulator and by tests.
+  // point_triangulator.
   void UpdateCamera(const DatabaseCamera& camera);
-  void ClearMatchesAndTwoViewGeometries();
 
  private:
   void DetectSchema();

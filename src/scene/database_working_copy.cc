@@ -7,13 +7,13 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <iostream>
 
 #include "scene/database.h"
 #include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/interrupt.h"
+#include "util/logging.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -126,9 +126,9 @@ DatabaseWorkingCopy::DatabaseWorkingCopy(const std::string& database_path)
       resumed_ = true;
       return;
     }
-    std::cerr << "gcn_matcher: discarding the interrupted matching in "
-              << copy_path_ << ": SQLite reports it damaged (" << problem
-              << "); starting over from " << database_path_ << "\n";
+    LOG(WARNING) << "discarding the interrupted matching in " << copy_path_
+                 << ": SQLite reports it damaged (" << problem
+                 << "); starting over from " << database_path_;
   }
   // The record goes first so that a copy interrupted half-way is never
   // taken for a complete one.

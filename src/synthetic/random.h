@@ -34,12 +34,6 @@ class SyntheticRandom {
   int UniformInt(int a, int b) {
     return a + static_cast<int>(Next() % static_cast<uint64_t>(b - a + 1));
   }
-  // Standard normal (Box-Muller, one value per call).
-  double Normal() {
-    const double u1 = 1.0 - Uniform();  // (0, 1]
-    const double u2 = Uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-  }
 
  private:
   uint64_t state_;

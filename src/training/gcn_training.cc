@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -13,6 +14,7 @@
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/string.h"
 
@@ -117,7 +119,17 @@ std::vector<LabelledScene> WithoutHeldOutScenes(
 }
 
 void GcnTrainingPipelineOptions::Check() const {
+  CHECK_OPTION_ONE_OF(embedding, "vlad", "onnx", "vlad+onnx");
   vlad.Check();
+  cnn.Check();
+  if (embedding != "vlad") {
+    CHECK_OPTION(cnn.onnx_path,
+                 !cnn.onnx_path.empty(),
+                 "name the ONNX network when the embedding is " + embedding);
+    CHECK_OPTION(images.image_root,
+                 ExistsDir(images.image_root),
+                 "be a folder with one subfolder <scene>/images per scene");
+  }
   labels.Check();
   training.Check();
   CHECK_OPTION(threshold,
@@ -140,8 +152,11 @@ GcnTrainingScene MergeTrainingScenes(
   }
   merged.embeddings.resize(num_rows, dim);
   Eigen::Index offset = 0;
-  for (const auto& part : parts) {
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const GcnTrainingScene& part = parts[p];
     const int first = static_cast<int>(offset);
+    merged.part_of_row.insert(
+        merged.part_of_row.end(), part.embeddings.rows(), static_cast<int>(p));
     merged.embeddings.middleRows(offset, part.embeddings.rows()) =
         part.embeddings;
     for (const auto& [i, j] : part.positive_pairs) {
@@ -161,15 +176,22 @@ GcnTrainingScene MergeTrainingScenes(
   return merged;
 }
 
-GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
-                                   const VladEmbedding& vlad,
-                                   const PairLabelOptions& label_options,
-                                   int num_threads) {
+namespace {
+
+typedef std::function<EmbeddingMatrix(
+    const LabelledScene&, const Database&, std::vector<image_t>*)>
+    EmbedDatabaseFunction;
+
+// The scene (or collection) with rows as embed_database gives them.
+GcnTrainingScene MakeUnfinalizedTrainingScene(
+    const LabelledScene& scene,
+    const EmbedDatabaseFunction& embed_database,
+    const PairLabelOptions& label_options) {
   if (!scene.parts.empty()) {
     std::vector<GcnTrainingScene> parts;
     for (const auto& part : scene.parts) {
       parts.push_back(
-          MakeTrainingScene(part, vlad, label_options, num_threads));
+          MakeUnfinalizedTrainingScene(part, embed_database, label_options));
     }
     return MergeTrainingScenes(scene.name, parts);
   }
@@ -178,8 +200,7 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
   std::vector<image_t> image_ids;
   GcnTrainingScene training_scene;
   training_scene.name = scene.name;
-  training_scene.embeddings = ComputeDatabaseEmbeddings(
-      database, vlad, &image_ids, /*cache_path=*/"", num_threads);
+  training_scene.embeddings = embed_database(scene, database, &image_ids);
   std::unordered_map<image_t, int> row_of_id;
   for (size_t row = 0; row < image_ids.size(); ++row) {
     row_of_id.emplace(image_ids[row], static_cast<int>(row));
@@ -209,6 +230,52 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
   return training_scene;
 }
 
+}  // namespace
+
+std::string SceneImageOptions::ImagePath(const LabelledScene& scene) const {
+  return JoinPaths(JoinPaths(image_root, scene.name), "images");
+}
+
+std::string SceneImageOptions::CnnCachePath(const LabelledScene& scene) const {
+  return cnn_cache_dir.empty()
+             ? DefaultCnnCachePath(scene.database_path)
+             : JoinPaths(cnn_cache_dir, scene.name + ".gcn-cnn-embedding.bin");
+}
+
+GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
+                                   const VladEmbedding& vlad,
+                                   const PairLabelOptions& label_options,
+                                   int num_threads) {
+  return MakeUnfinalizedTrainingScene(
+      scene,
+      [&](const LabelledScene&,
+          const Database& database,
+          std::vector<image_t>* image_ids) {
+        return ComputeDatabaseEmbeddings(
+            database, vlad, image_ids, /*cache_path=*/"", num_threads);
+      },
+      label_options);
+}
+
+GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
+                                   const ModelEmbedder& embedder,
+                                   const SceneImageOptions& images,
+                                   const PairLabelOptions& label_options) {
+  GcnTrainingScene made = MakeUnfinalizedTrainingScene(
+      scene,
+      [&](const LabelledScene& part,
+          const Database& database,
+          std::vector<image_t>* image_ids) {
+        return embedder.EmbedDatabase(database,
+                                      images.ImagePath(part),
+                                      images.CnnCachePath(part),
+                                      image_ids);
+      },
+      label_options);
+  made.embeddings = embedder.Finalize(made.embeddings);
+  return made;
+}
+
 GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
                        const std::vector<LabelledScene>& validation_scenes,
                        const GcnTrainingPipelineOptions& options) {
@@ -225,23 +292,61 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
       }
     }
   }
-  const auto& log = options.training.log;
-  if (log)
-    log("training the VLAD embedding on " +
-        std::to_string(database_paths.size()) + " databases");
-  const VladEmbedding vlad = TrainVladEmbedding(database_paths, options.vlad);
+  const bool use_vlad = options.embedding != "onnx";
+  const bool use_cnn = options.embedding != "vlad";
+  VladEmbedding vlad;
+  if (use_vlad) {
+    LOG(INFO) << "training the VLAD embedding on " << database_paths.size()
+              << " databases";
+    vlad = TrainVladEmbedding(database_paths, options.vlad);
+  }
+  CnnEmbeddingModel cnn_model;
+  if (use_cnn) {
+    // Raw descriptors of every training database (cached, so embedding the
+    // scenes below reuses them), then the PCA on them.
+    const CnnNetwork network(options.cnn);
+    std::vector<FloatMatrix> collections;
+    std::set<std::string> embedded;
+    for (const auto& scene : training_scenes) {
+      for (const auto& part : scene.parts.empty()
+                                  ? std::vector<LabelledScene>{scene}
+                                  : scene.parts) {
+        if (!embedded.insert(part.database_path).second) continue;
+        LOG(INFO) << "CNN descriptors of " << part.name;
+        std::vector<image_t> image_ids;
+        collections.push_back(
+            ComputeDatabaseCnnDescriptors(Database(part.database_path),
+                                          network,
+                                          options.images.ImagePath(part),
+                                          options.images.CnnCachePath(part),
+                                          &image_ids));
+      }
+    }
+    cnn_model = TrainCnnEmbeddingModel(network, collections);
+    LOG(INFO) << "CNN embedding " << cnn_model.network_name << " (checksum "
+              << FormatChecksum(cnn_model.network_checksum)
+              << "): " << cnn_model.descriptor_dim << " -> "
+              << cnn_model.OutputDim() << "-D";
+  }
+  const GcnEmbeddingConfig embedding_config = MakeEmbeddingConfig(
+      use_vlad ? &vlad : nullptr, use_cnn ? &cnn_model : nullptr);
+  ModelEmbeddingOptions embedder_options;
+  embedder_options.onnx_path = options.cnn.onnx_path;
+  embedder_options.onnx_flag = "--GcnTraining.onnx_path";
+  embedder_options.onnx_batch_size = options.cnn.batch_size;
+  embedder_options.num_threads = options.training.num_threads;
+  embedder_options.progress_every = options.cnn.progress_every;
+  embedder_options.use_vlad_cache = false;
+  const ModelEmbedder embedder(embedding_config, embedder_options);
 
   auto make_scenes = [&](const std::vector<LabelledScene>& scenes) {
     std::vector<GcnTrainingScene> made;
     for (const auto& scene : scenes) {
-      made.push_back(MakeTrainingScene(
-          scene, vlad, options.labels, options.training.num_threads));
-      if (log) {
-        log("scene " + scene.name + ": " +
-            std::to_string(made.back().embeddings.rows()) + " images, " +
-            std::to_string(made.back().positive_pairs.size()) +
-            " matchable pairs");
-      }
+      made.push_back(
+          MakeTrainingScene(scene, embedder, options.images, options.labels));
+      LOG(INFO) << "scene " << scene.name << ": "
+                << made.back().embeddings.rows() << " images, "
+                << made.back().positive_pairs.size() << " matchable pairs";
     }
     return made;
   };
@@ -258,9 +363,7 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   training.tau_ct = static_cast<float>(options.labels.min_common_track_ratio);
   GcnTrainer trainer(training);
   GcnModel model = trainer.Train(train, validation);
-  model.embedding.type = "vlad";
-  model.embedding.dim = vlad.OutputDim();
-  model.embedding.blob = vlad.Serialize();
+  model.embedding = embedding_config;
   if (options.threshold >= 0) {
     model.info.threshold = static_cast<float>(options.threshold);
   } else {
@@ -270,11 +373,9 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
         validation.empty() ? train : validation;
     model.info.threshold =
         SelectGcnThreshold(model, selection, options.training.num_threads);
-    if (log) {
-      log("decision threshold " + std::to_string(model.info.threshold) +
-          " (max mean F on the " +
-          (validation.empty() ? "training" : "validation") + " scenes)");
-    }
+    LOG(INFO) << "decision threshold " << std::to_string(model.info.threshold)
+              << " (max mean F on the "
+              << (validation.empty() ? "training" : "validation") << " scenes)";
   }
   std::ostringstream notes;
   notes << "trained on";
@@ -283,30 +384,34 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
     notes << "; validated on";
     for (const auto& scene : validation_scenes) notes << " " << scene.name;
   }
-  notes << "; VLAD " << vlad.NumWords() << " words -> " << vlad.OutputDim()
-        << "-D; tau_MO " << options.labels.min_overlap << ", tau_CT "
+  if (use_vlad) {
+    notes << "; VLAD " << vlad.NumWords() << " words -> " << vlad.OutputDim()
+          << "-D";
+  }
+  if (use_cnn) {
+    notes << "; CNN " << cnn_model.network_name << " (checksum "
+          << FormatChecksum(cnn_model.network_checksum) << ", "
+          << cnn_model.options.max_image_size << " px, GeM p "
+          << cnn_model.options.gem_p
+          << (cnn_model.options.center ? ", centred" : "") << ") -> "
+          << cnn_model.OutputDim() << "-D";
+  }
+  notes << "; tau_MO " << options.labels.min_overlap << ", tau_CT "
         << options.labels.min_common_track_ratio << "; threshold "
         << model.info.threshold << "; seed " << training.seed;
   model.info.notes = notes.str();
   return model;
 }
 
-double PairSetScores::Precision() const {
-  return num_pairs == 0 ? 0.0
-                        : static_cast<double>(num_true_positives) / num_pairs;
+PrecisionRecall PairSetScores::Scores() const {
+  return ComputePrecisionRecall(num_true_positives, num_pairs, num_positives);
 }
 
-double PairSetScores::Recall() const {
-  return num_positives == 0
-             ? 0.0
-             : static_cast<double>(num_true_positives) / num_positives;
-}
+double PairSetScores::Precision() const { return Scores().precision; }
 
-double PairSetScores::F() const {
-  const double p = Precision();
-  const double r = Recall();
-  return p + r == 0 ? 0.0 : 2 * p * r / (p + r);
-}
+double PairSetScores::Recall() const { return Scores().recall; }
+
+double PairSetScores::F() const { return Scores().f_measure; }
 
 PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
                            const GcnTrainingScene& scene) {
@@ -323,6 +428,15 @@ PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
   for (const uint64_t key : selected) {
     scores.num_true_positives += positives.count(key);
     scores.num_unrelated += unrelated.count(key);
+  }
+  if (!scene.part_of_row.empty()) {
+    for (const auto& [i, j] : pairs) {
+      // Each distinct pair once: its key leaves the set when counted.
+      if (i != j && scene.part_of_row[i] != scene.part_of_row[j] &&
+          selected.erase(PairKey(i, j)) > 0) {
+        ++scores.num_cross_scene;
+      }
+    }
   }
   return scores;
 }
@@ -466,9 +580,14 @@ float SelectGcnThreshold(const GcnModel& model,
   }
   float best_threshold = model.info.threshold;
   double best_f = -1;
-  // Integer steps so the grid is exact and the choice reproducible.
-  for (int step = 1; step <= 19; ++step) {
-    const float threshold = 0.05f * step;
+  // Steps of 0.05, refined towards both ends: a model's scores on an
+  // unfamiliar collection can crowd near 0 or 1.
+  std::vector<float> grid = {0.01f, 0.02f};
+  for (int step = 1; step <= 19; ++step) grid.push_back(0.05f * step);
+  for (float threshold : {0.97f, 0.98f, 0.99f, 0.995f, 0.999f}) {
+    grid.push_back(threshold);
+  }
+  for (const float threshold : grid) {
     double sum_f = 0;
     for (size_t s = 0; s < scenes.size(); ++s) {
       sum_f +=

@@ -3,9 +3,12 @@
 #include <string>
 #include <vector>
 
+#include "controllers/gcn_model_pairing.h"
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
 #include "gcn/gcn_trainer.h"
+#include "math/precision_recall.h"
+#include "retrieval/cnn_embedding.h"
 #include "retrieval/vlad.h"
 
 namespace colmap_gcn {
@@ -36,10 +39,33 @@ std::vector<LabelledScene> WithoutHeldOutScenes(
     const std::vector<LabelledScene>& scenes,
     const std::vector<std::string>& held_out);
 
+// Where a labelled scene's image files and CNN descriptor cache are (CNN
+// embeddings read the images; the corpus's databases name them relative
+// to <image_root>/<scene>/images, as gcn_benchmark extracted them).
+struct SceneImageOptions {
+  std::string image_root = "../shared/datasets";
+
+  // CNN caches as <cnn_cache_dir>/<scene>.gcn-cnn-embedding.bin; empty:
+  // beside each scene's database.
+  std::string cnn_cache_dir = "";
+
+  std::string ImagePath(const LabelledScene& scene) const;
+  std::string CnnCachePath(const LabelledScene& scene) const;
+};
+
 struct GcnTrainingPipelineOptions {
-  // The shared embedding: one VLAD codebook + whitening trained on all
-  // training databases, stored in the model so inference embeds alike.
+  // The model's embedding: vlad | onnx | vlad+onnx (each part L2-normalised
+  // and scaled by 1/sqrt(2)).
+  std::string embedding = "vlad";
+
+  // The shared VLAD: one codebook + whitening trained on all training
+  // databases, stored in the model so inference embeds alike.
   VladOptions vlad;
+
+  // The CNN (onnx_path, preprocessing, pooling, PCA-whitening learned on the
+  // training databases), stored in the model with the network's checksum.
+  CnnEmbeddingOptions cnn;
+  SceneImageOptions images;
 
   // Labels: matchable when overlap >= tau_MO or common tracks >= tau_CT.
   PairLabelOptions labels;
@@ -69,6 +95,14 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
                                    const PairLabelOptions& label_options,
                                    int num_threads);
 
+// The same with any model embedding: each database embedded by
+// embedder.EmbedDatabase (images and cache as `images` says), then the
+// whole scene or collection by embedder.Finalize (CNN centring and PCA).
+GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
+                                   const ModelEmbedder& embedder,
+                                   const SceneImageOptions& images,
+                                   const PairLabelOptions& label_options);
+
 // Trains the embedding on the training scenes, then the GCN (validating on
 // validation_scenes, or on a held-out fraction of queries when empty), and
 // returns the model with the embedding, thresholds and notes filled in.
@@ -83,6 +117,9 @@ struct PairSetScores {
   size_t num_positives = 0;  // matchable pairs in the scene
   // Selected pairs among the scene's unrelated_pairs (wrong pairs).
   size_t num_unrelated = 0;
+  // Selected pairs across the parts of a collection (unrelated photos).
+  size_t num_cross_scene = 0;
+  PrecisionRecall Scores() const;
   double Precision() const;
   double Recall() const;
   double F() const;
@@ -143,8 +180,9 @@ std::vector<uint8_t> MatchableFlags(
 std::vector<std::pair<int, int>> PairsAtThreshold(
     const std::vector<ScoredRowPair>& candidates, float threshold);
 
-// The threshold in {0.05, 0.10, ..., 0.95} maximising the mean pair-set F
-// over the scenes (ties: the higher threshold, fewer pairs).
+// The threshold in {0.01, 0.02, 0.05, 0.10, ..., 0.95, 0.97, 0.98, 0.99,
+// 0.995, 0.999} maximising the mean pair-set F over the scenes (ties: the
+// higher threshold, fewer pairs).
 float SelectGcnThreshold(const GcnModel& model,
                          const std::vector<GcnTrainingScene>& scenes,
                          int num_threads);

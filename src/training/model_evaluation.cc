@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "evaluation/figures.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/option_check.h"
+#include "util/string.h"
 
 namespace colmap_gcn {
 namespace {
@@ -77,20 +80,35 @@ std::vector<GcnTrainingScene> EmbedScenesForModel(
     const GcnModel& model,
     const std::vector<LabelledScene>& scenes,
     const PairLabelOptions& label_options,
-    int num_threads) {
-  if (model.embedding.type != "vlad") {
+    int num_threads,
+    const std::string& onnx_path,
+    const SceneImageOptions& images,
+    const std::string& onnx_flag) {
+  if (model.embedding.type.rfind("imported", 0) == 0) {
     ThrowError("the model uses imported descriptors (",
                model.embedding.type,
-               "); only VLAD models can embed benchmark scenes");
+               "); only VLAD and CNN models can embed benchmark scenes");
   }
-  const VladEmbedding vlad =
-      VladEmbedding::Deserialize(model.embedding.blob, "the model");
+  ModelEmbeddingOptions options;
+  options.onnx_path = onnx_path;
+  options.onnx_flag = onnx_flag;
+  options.num_threads = num_threads;
+  options.use_vlad_cache = false;
+  const ModelEmbedder embedder(model.embedding, options);
   std::vector<GcnTrainingScene> embedded;
   for (const auto& scene : scenes) {
     embedded.push_back(
-        MakeTrainingScene(scene, vlad, label_options, num_threads));
+        MakeTrainingScene(scene, embedder, images, label_options));
+    model.CheckEmbeddingDimension(
+        static_cast<int>(embedded.back().embeddings.cols()));
   }
   return embedded;
+}
+
+double FixedKComparison::KeptFraction() const {
+  return num_candidates > 0
+             ? static_cast<double>(gcn.num_pairs) / num_candidates
+             : 0.0;
 }
 
 FixedKComparison CompareWithFixedK(const GcnModel& model,
@@ -100,8 +118,12 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
   FixedKComparison result;
   result.scene = scene.name;
   result.num_unrelated_pairs = scene.unrelated_pairs.size();
+  result.threshold = model.info.threshold;
+  result.num_images = static_cast<int>(scene.embeddings.rows());
+  result.is_collection = !scene.part_of_row.empty();
   const std::vector<ScoredRowPair> candidates =
       GcnCandidatePairs(model, scene, num_threads);
+  result.num_candidates = candidates.size();
   result.gcn =
       ScorePairSet(PairsAtThreshold(candidates, model.info.threshold), scene);
   const std::vector<uint8_t> matchable = MatchableFlags(candidates, scene);
@@ -162,29 +184,32 @@ std::vector<FixedKComparison> CompareWithFixedK(
 }
 
 std::string FormatFixedKComparison(
-    const std::vector<FixedKComparison>& comparisons, float threshold) {
+    const std::vector<FixedKComparison>& comparisons) {
   std::ostringstream out;
-  char line[128];
-  std::snprintf(line, sizeof(line), "%.2f", threshold);
-  out << "GCN at threshold " << line
-      << "; kNN= the same number of pairs, most similar first; top-k= the "
+  char line[256];
+  out << "GCN at its model's threshold (thr); kept: the fraction of its "
+         "candidate pairs (the 1-hop nodes of every QES) the GCN keeps; "
+         "kNN= the same number of pairs, most similar first; top-k= the "
          "smallest per-image k with at least as many pairs; best k = the "
          "per-image k with the highest F (chosen with the labels: an upper "
          "bound for any fixed k).\n\n"
-      << "AP: average precision of the GCN's candidate pairs (every "
-         "QES's 1-hop nodes) ranked by GCN score and by embedding "
-         "similarity.\n\n"
-      << "| scene | pairs | matchable | GCN P | R | F | kNN= P | R | F | "
-         "top-k= k | P | R | F | best k | P | R | F | AP GCN | AP sim |\n"
+      << "AP: average precision of the GCN's candidate pairs ranked by GCN "
+         "score and by embedding similarity.\n\n"
+      << "| scene | images | thr | candidates | pairs | kept | matchable | "
+         "GCN P | R | F | kNN= P | R | F | top-k= k | P | R | F | best k | "
+         "P | R | F | AP GCN | AP sim |\n"
       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-         "---:|---:|---:|---:|---:|---:|\n";
+         "---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   double gcn = 0, equal = 0, top_k = 0, best = 0, gcn_ap = 0, sim_ap = 0;
   int gcn_wins = 0;
+  int operating_target = 0, reachable_target = 0, similarity_target = 0;
   for (const auto& c : comparisons) {
-    out << "| " << c.scene << " | " << c.gcn.num_pairs << " | "
-        << c.gcn.num_positives << " | " << Scores(c.gcn) << " | "
-        << Scores(c.equal) << " | " << c.equal_k << " | "
-        << Scores(c.top_k_equal) << " | " << c.best_k << " | "
+    std::snprintf(line, sizeof(line), "%.3g", c.threshold);
+    out << "| " << c.scene << " | " << c.num_images << " | " << line << " | "
+        << c.num_candidates << " | " << c.gcn.num_pairs << " | "
+        << Fixed3(c.KeptFraction()) << " | " << c.gcn.num_positives << " | "
+        << Scores(c.gcn) << " | " << Scores(c.equal) << " | " << c.equal_k
+        << " | " << Scores(c.top_k_equal) << " | " << c.best_k << " | "
         << Scores(c.top_k_best) << " | " << Fixed3(c.gcn_ap) << " | "
         << Fixed3(c.similarity_ap) << " |\n";
     gcn_ap += c.gcn_ap;
@@ -194,6 +219,10 @@ std::string FormatFixedKComparison(
     top_k += c.top_k_equal.F();
     best += c.top_k_best.F();
     gcn_wins += c.gcn.F() >= c.top_k_best.F();
+    operating_target += c.gcn.Precision() >= kTargetPrecision &&
+                        c.gcn.Recall() >= kPrecisionAtRecall;
+    reachable_target += c.gcn_precision_at_recall >= kTargetPrecision;
+    similarity_target += c.similarity_precision_at_recall >= kTargetPrecision;
   }
   const double n = static_cast<double>(std::max<size_t>(1, comparisons.size()));
   std::snprintf(line,
@@ -207,6 +236,18 @@ std::string FormatFixedKComparison(
       << " of " << comparisons.size() << " scenes.\n";
   out << "Mean AP: GCN " << Fixed3(gcn_ap / n) << ", similarity "
       << Fixed3(sim_ap / n) << ".\n";
+  std::snprintf(line,
+                sizeof(line),
+                "P >= %.2f at R >= %.1f: the GCN at its threshold on %d of "
+                "%zu scenes; reachable by some threshold on the GCN's "
+                "ranking on %d, on similarity's on %d.\n",
+                kTargetPrecision,
+                kPrecisionAtRecall,
+                operating_target,
+                comparisons.size(),
+                reachable_target,
+                similarity_target);
+  out << line;
 
   // Wrong pairs: what folds models on ambiguous scenes. kNN@R is the
   // fewest most-similar pairs with the GCN's recall.
@@ -232,6 +273,35 @@ std::string FormatFixedKComparison(
       << "; GCN admits fewer on " << fewer << " of " << comparisons.size()
       << " scenes.\n";
 
+  // Collections of scenes that share nothing: pairs across scenes can only
+  // be wrong (the unrelated-photo target: <= 1 % at within-scene recall
+  // >= 0.9).
+  bool any_collection = false;
+  for (const auto& c : comparisons) {
+    if (!c.is_collection) continue;
+    if (!any_collection) {
+      out << "\nCollections (pairs across their scenes share nothing): "
+             "chosen pairs across scenes, GCN and kNN at equal recall.\n\n"
+          << "| collection | images | GCN pairs | R | across scenes | % | "
+             "kNN@R pairs | across scenes | % |\n"
+          << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      any_collection = true;
+    }
+    auto percent = [](size_t part, size_t whole) {
+      char text[32];
+      std::snprintf(
+          text, sizeof(text), "%.2f", whole > 0 ? 100.0 * part / whole : 0.0);
+      return std::string(text);
+    };
+    out << "| " << c.scene << " | " << c.num_images << " | " << c.gcn.num_pairs
+        << " | " << Fixed3(c.gcn.Recall()) << " | " << c.gcn.num_cross_scene
+        << " | " << percent(c.gcn.num_cross_scene, c.gcn.num_pairs) << " | "
+        << c.equal_recall.num_pairs << " | " << c.equal_recall.num_cross_scene
+        << " | "
+        << percent(c.equal_recall.num_cross_scene, c.equal_recall.num_pairs)
+        << " |\n";
+  }
+
   // Whether any threshold could meet the ground-truth target: the best
   // precision each ranking reaches at the target recall.
   std::snprintf(line, sizeof(line), "%.1f", kPrecisionAtRecall);
@@ -246,6 +316,36 @@ std::string FormatFixedKComparison(
         << PrecisionOrDash(c.similarity_precision_at_recall) << " |\n";
   }
   return out.str();
+}
+
+std::vector<EvaluationFold> ReadEvaluationFolds(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) ThrowError("cannot read the folds file ", path);
+  std::vector<EvaluationFold> folds;
+  std::set<std::string> seen;
+  std::string text;
+  for (int number = 1; std::getline(file, text); ++number) {
+    const std::string trimmed = StringTrim(text);
+    if (trimmed.empty() || trimmed[0] == '#') continue;
+    std::istringstream fields(trimmed);
+    EvaluationFold fold;
+    std::string scenes, extra;
+    if (!(fields >> fold.model_path >> scenes) || (fields >> extra)) {
+      ThrowError(path,
+                 " line ",
+                 number,
+                 ": expected \"<model path> <scene>[,<scene>...]\"");
+    }
+    fold.scenes = SplitCommaList(scenes);
+    for (const auto& scene : fold.scenes) {
+      if (!seen.insert(scene).second) {
+        ThrowError(path, " line ", number, ": scene ", scene, " listed twice");
+      }
+    }
+    folds.push_back(fold);
+  }
+  if (folds.empty()) ThrowError("the folds file ", path, " lists no fold");
+  return folds;
 }
 
 void GcnSensitivityOptions::Check() const {

@@ -8,19 +8,31 @@
 
 namespace colmap_gcn {
 
-// The labelled scenes embedded with the model's own embedding (VLAD models
-// only; throws Error for models on imported descriptors).
+// The labelled scenes embedded with the model's own embedding (VLAD, CNN
+// or both; throws Error for models on imported descriptors). CNN models
+// need the ONNX network (onnx_path; `onnx_flag` names its option in
+// errors) and the scenes' images.
 std::vector<GcnTrainingScene> EmbedScenesForModel(
     const GcnModel& model,
     const std::vector<LabelledScene>& scenes,
     const PairLabelOptions& label_options,
-    int num_threads);
+    int num_threads,
+    const std::string& onnx_path = "",
+    const SceneImageOptions& images = SceneImageOptions(),
+    const std::string& onnx_flag = "--onnx_path");
 
 // A model against fixed-k retrieval on the same embedding, on one scene
 // the model was not trained on.
 struct FixedKComparison {
   std::string scene;
   size_t num_unrelated_pairs = 0;  // the scene's pairs that share nothing
+  int num_images = 0;
+  bool is_collection = false;  // a collection of scenes ("a+b")
+  float threshold = 0.5f;      // the model's decision threshold
+  // The GCN's distinct candidate pairs (1-hop nodes of every QES): what a
+  // kNN with k = k1 would match; gcn.num_pairs of them are kept.
+  size_t num_candidates = 0;
+  double KeptFraction() const;
   PairSetScores gcn;    // the model's recommended settings and threshold
   PairSetScores equal;  // the gcn.num_pairs most similar pairs
   // The fewest most-similar-first pairs with at least the GCN's true
@@ -44,8 +56,9 @@ struct FixedKComparison {
 };
 
 // Recall at which FixedKComparison reports the best reachable precision
-// (the retrieval target on ground-truth scenes: P >= 0.9 at R >= 0.8).
+// (the retrieval target on real scenes: P >= 0.85 at R >= 0.8).
 constexpr double kPrecisionAtRecall = 0.8;
+constexpr double kTargetPrecision = 0.85;
 
 FixedKComparison CompareWithFixedK(const GcnModel& model,
                                    const GcnTrainingScene& scene,
@@ -61,9 +74,22 @@ std::vector<FixedKComparison> CompareWithFixedK(
 
 // The comparison as markdown: the F/AP table with a mean row, then the
 // wrong pairs of the GCN and of kNN at equal recall (scenes whose labels
-// mark pairs that share nothing).
+// mark pairs that share nothing). Each row carries its own model's
+// threshold, so comparisons of several models (leave-scene-out folds) form
+// one table.
 std::string FormatFixedKComparison(
-    const std::vector<FixedKComparison>& comparisons, float threshold);
+    const std::vector<FixedKComparison>& comparisons);
+
+// One model and the scenes it is evaluated on (a leave-scene-out fold).
+struct EvaluationFold {
+  std::string model_path;
+  std::vector<std::string> scenes;
+};
+
+// Folds file: one fold per line, "<model path> <scene>[,<scene>...]";
+// blank lines and lines starting with # are skipped. Throws Error naming
+// the line of a malformed entry or a scene listed twice.
+std::vector<EvaluationFold> ReadEvaluationFolds(const std::string& path);
 
 // Parameter sensitivity like the paper's Fig. 7: one of k1, k2, u and the
 // decision threshold varied at a time from the model's recommended

@@ -13,15 +13,11 @@ TEST(GcnMatching, WarnsOnlyWhenEveryCandidateWasKept) {
   EXPECT_EQ(GcnKeptEveryCandidateWarning(stats, 40), "");
   stats.num_above_threshold = 10;
   const std::string warning = GcnKeptEveryCandidateWarning(stats, 40);
-  EXPECT_EQ(warning.rfind("gcn_matcher: warning: all 10 candidate pairs", 0),
-            0u)
-      << warning;
+  // LOG(WARNING) adds the level and source; the message starts with what.
+  EXPECT_EQ(warning.rfind("all 10 candidate pairs", 0), 0u) << warning;
   EXPECT_NE(warning.find("k1 = 40"), std::string::npos) << warning;
-  // The two ways out the model card measured: a higher threshold for
-  // collections of unrelated places, a small k for duplicate structure.
-  EXPECT_NE(warning.find("--GcnMatching.threshold 0.9"), std::string::npos)
-      << warning;
-  EXPECT_NE(warning.find("--GcnMatching.k 5"), std::string::npos) << warning;
+  // What to try depends on the model, so the model card says it.
+  EXPECT_NE(warning.find("docs/model_card.md"), std::string::npos) << warning;
   EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;
 }
 

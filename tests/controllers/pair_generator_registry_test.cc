@@ -128,6 +128,71 @@ TEST(PairGeneratorRegistry, FlagsBindEveryGeneratorsOptions) {
                               "--GcnMatching.k must be >= 1 (got 0)");
 }
 
+// The embedding flags reach the GCN's options (checked against the model)
+// and knn's (resolved into its descriptor options).
+TEST(PairGeneratorRegistry, EmbeddingFlagsBindGcnAndKnn) {
+  GcnMatchingOptions options;
+  OptionManager manager("test", "");
+  manager.AddDefaultOption("GcnMatching.pairing", &options.pairing);
+  PairGenerators().AddOptions(&manager, &options.generators);
+  std::vector<std::string> args = {"test",
+                                   "--GcnMatching.embedding",
+                                   "vlad+onnx",
+                                   "--GcnMatching.onnx_path",
+                                   "net.onnx",
+                                   "--GcnMatching.image_path",
+                                   "images",
+                                   "--GcnMatching.onnx_max_image_size",
+                                   "640",
+                                   "--GcnMatching.onnx_batch_size",
+                                   "4"};
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  ASSERT_TRUE(manager.Parse(static_cast<int>(argv.size()), argv.data()));
+  const auto& gcn = options.generators.Get<GcnModelPairingOptions>("gcn");
+  EXPECT_EQ(gcn.embedding, "vlad+onnx");
+  EXPECT_EQ(gcn.onnx_path, "net.onnx");
+  EXPECT_EQ(gcn.image_path, "images");
+  EXPECT_EQ(gcn.onnx.max_image_size, 640);
+  EXPECT_EQ(gcn.onnx.gem_p, -1);  // unset: the model's
+  EXPECT_EQ(gcn.onnx_batch_size, 4);
+  const auto& knn = options.generators.Get<KnnPairingOptions>("knn");
+  const GlobalDescriptorOptions descriptors = knn.Descriptors();
+  EXPECT_EQ(descriptors.embedding, "vlad+onnx");
+  EXPECT_EQ(descriptors.cnn.onnx_path, "net.onnx");
+  EXPECT_EQ(descriptors.image_path, "images");
+  EXPECT_EQ(descriptors.cnn.max_image_size, 640);
+  EXPECT_EQ(descriptors.cnn.gem_p, CnnEmbeddingOptions().gem_p);
+  EXPECT_EQ(descriptors.cnn.batch_size, 4);
+  EXPECT_NO_THROW(options.Check());
+  options.pairing = "knn";
+  EXPECT_NO_THROW(options.Check());
+}
+
+TEST(PairGeneratorRegistry, KnnEmbeddingChoices) {
+  KnnPairingOptions knn;
+  EXPECT_EQ(knn.Descriptors().embedding, "vlad");  // "" keeps the default
+  knn.embedding = "imported";
+  test::ExpectErrorContaining(
+      [&] { knn.Check(); },
+      "descriptors.descriptor_path must name the descriptor file");
+  knn.descriptors.descriptor_path = "x.h5";
+  EXPECT_NO_THROW(knn.Check());
+  EXPECT_EQ(knn.Descriptors().embedding, "vlad");  // the import takes over
+  knn.embedding = "onnx";
+  test::ExpectErrorContaining(
+      [&] { knn.Check(); },
+      "descriptors.cnn.onnx_path must name the ONNX network");
+  knn.descriptors.cnn.onnx_path = "net.onnx";
+  knn.descriptors.image_path = "images";
+  EXPECT_NO_THROW(knn.Check());
+  test::ExpectErrorContaining([&] { knn.Descriptors(); },
+                              "cannot be combined with "
+                              "--GcnMatching.embedding onnx");
+  knn.embedding = "sift";
+  test::ExpectErrorContaining([&] { knn.Check(); }, "(got \"sift\")");
+}
+
 // Each generator that needs no COLMAP creates from its defaults (imported
 // from a pairs file) and yields valid pairs of the database's images.
 TEST_F(PairGeneratorRegistryTest, EachGeneratorCreatesFromDefaultOptions) {

@@ -56,7 +56,7 @@ std::map<image_pair_t, std::pair<int, size_t>> Geometries(
 std::set<image_pair_t> VerifiedPairs(const std::string& database_path) {
   std::set<image_pair_t> verified;
   for (const auto& [pair_id, geometry] : Geometries(database_path)) {
-    if (IsVerifiedTwoViewGeometry(geometry.first, geometry.second, 15)) {
+    if (IsVerifiedTwoViewGeometry(geometry.first, geometry.second)) {
       verified.insert(pair_id);
     }
   }
@@ -372,7 +372,9 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
                    &output),
             0)
       << output;
-  EXPECT_NE(output.find("gcn_matcher: warning: all "), std::string::npos)
+  EXPECT_NE(output.find("] all "), std::string::npos) << output;
+  EXPECT_NE(output.find("candidate pairs scored above the model's threshold"),
+            std::string::npos)
       << output;
   EXPECT_NE(output.find("k1 = 6 "), std::string::npos) << output;
   EXPECT_GE(ReadPairsFile(pairs_path3).size(), pairs.size());

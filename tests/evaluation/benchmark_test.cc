@@ -10,9 +10,10 @@
 
 #include "evaluation/common_tracks.h"
 #include "evaluation/ground_truth.h"
-#include "evaluation/json.h"
+#include "evaluation/json_file.h"
 #include "evaluation/pose_pair_filter.h"
 #include "scene/colmap_scene_fixture.h"
+#include "scene/database.h"
 #include "scene/reconstruction_stats.h"
 #include "synthetic/pair_overlap.h"
 #include "test_utils.h"
@@ -59,7 +60,7 @@ class GcnBenchmarkEndToEnd : public testing::Test {
     dir_ = new TemporaryDirectory("colmap_gcn_benchmark");
     first_exit_ = RunBenchmark(Out(), &first_output_);
     if (first_exit_ == 0) {
-      results_ = new JsonValue(ReadJsonFile(JoinPaths(Out(), "results.json")));
+      results_ = new Json(ReadJsonFile(JoinPaths(Out(), "results.json")));
     }
   }
   static void TearDownTestSuite() {
@@ -76,12 +77,12 @@ class GcnBenchmarkEndToEnd : public testing::Test {
 
   static std::string Out() { return JoinPaths(dir_->Path(), "out"); }
   static std::string SceneDir() { return JoinPaths(Out(), kScene); }
-  static const JsonValue& Methods() {
-    return results_->Get("scenes").AsArray().at(0).Get("methods");
+  static const Json& Methods() {
+    return results_->at("scenes").at(0).at("methods");
   }
-  static const JsonValue& Method(const std::string& spec) {
-    for (const JsonValue& method : Methods().AsArray()) {
-      if (method.Get("method").AsString() == spec) return method;
+  static const Json& Method(const std::string& spec) {
+    for (const Json& method : Methods()) {
+      if (method.at("method").get<std::string>() == spec) return method;
     }
     throw std::runtime_error("no method " + spec);
   }
@@ -89,13 +90,13 @@ class GcnBenchmarkEndToEnd : public testing::Test {
   static TemporaryDirectory* dir_;
   static int first_exit_;
   static std::string first_output_;
-  static JsonValue* results_;
+  static Json* results_;
 };
 
 TemporaryDirectory* GcnBenchmarkEndToEnd::dir_ = nullptr;
 int GcnBenchmarkEndToEnd::first_exit_ = -1;
 std::string GcnBenchmarkEndToEnd::first_output_;
-JsonValue* GcnBenchmarkEndToEnd::results_ = nullptr;
+Json* GcnBenchmarkEndToEnd::results_ = nullptr;
 
 TEST_F(GcnBenchmarkEndToEnd, PrintsAndWritesAllTables) {
   for (const char* table : {"Matchable image retrieval",
@@ -115,26 +116,27 @@ TEST_F(GcnBenchmarkEndToEnd, PrintsAndWritesAllTables) {
 TEST_F(GcnBenchmarkEndToEnd, NumbersMatchModelAnalyzerAndSql) {
   int checked = 0;
   for (const std::string spec : {"exhaustive", "oracle"}) {
-    const JsonValue& method = Method(spec);
-    ASSERT_EQ(method.Get("status").AsString(), "ok") << spec;
+    const Json& method = Method(spec);
+    ASSERT_EQ(method.at("status").get<std::string>(), "ok") << spec;
     const std::string db =
         JoinPaths(JoinPaths(SceneDir(), spec), "database.db");
     // Every pair in a fresh copy of the extracted database was attempted by
     // this method; verified pairs as COLMAP's mapper uses them.
-    EXPECT_EQ(method.Get("tam").AsInt(),
+    EXPECT_EQ(method.at("tam").get<int64_t>(),
               QuerySqlInt(db, "SELECT COUNT(*) FROM two_view_geometries"))
         << spec;
-    EXPECT_EQ(method.Get("um").AsInt(),
-              QuerySqlInt(db,
-                          "SELECT COUNT(*) FROM two_view_geometries WHERE "
-                          "rows >= 15 AND config IN (2, 3, 4, 5, 6, 8)"))
-        << spec;
-    EXPECT_EQ(method.Get("retrieval").Get("num_pairs").AsInt(),
-              method.Get("tam").AsInt());
-    const JsonValue& sfm = method.Get("sfm");
-    EXPECT_EQ(sfm.Get("num_images").AsInt(),
+    int64_t num_verified = 0;
+    for (const TwoViewGeometryInfo& info :
+         Database(db).ReadTwoViewGeometryInfos()) {
+      num_verified += IsVerifiedTwoViewGeometry(info.config, info.num_inliers);
+    }
+    EXPECT_EQ(method.at("um").get<int64_t>(), num_verified) << spec;
+    EXPECT_EQ(method.at("retrieval").at("num_pairs").get<int64_t>(),
+              method.at("tam").get<int64_t>());
+    const Json& sfm = method.at("sfm");
+    EXPECT_EQ(sfm.at("num_images").get<int64_t>(),
               QuerySqlInt(db, "SELECT COUNT(*) FROM images"));
-    const std::string model = sfm.Get("largest_model_path").AsString();
+    const std::string model = sfm.at("largest_model_path").get<std::string>();
     ASSERT_FALSE(model.empty()) << spec;
     std::string analyzer;
     ASSERT_EQ(RunShell(ShellQuote(RealColmapExe()) + " model_analyzer --path " +
@@ -142,51 +144,51 @@ TEST_F(GcnBenchmarkEndToEnd, NumbersMatchModelAnalyzerAndSql) {
                        &analyzer),
               0)
         << analyzer;
-    EXPECT_EQ(sfm.Get("num_registered").AsInt(),
+    EXPECT_EQ(sfm.at("num_registered").get<int64_t>(),
               AnalyzerValue(analyzer, "Registered images"));
-    EXPECT_EQ(sfm.Get("num_points3D").AsInt(),
+    EXPECT_EQ(sfm.at("num_points3D").get<int64_t>(),
               AnalyzerValue(analyzer, "Points"));
-    EXPECT_EQ(sfm.Get("num_observations").AsInt(),
+    EXPECT_EQ(sfm.at("num_observations").get<int64_t>(),
               AnalyzerValue(analyzer, "Observations"));
-    EXPECT_NEAR(sfm.Get("mean_track_length").AsDouble(),
+    EXPECT_NEAR(sfm.at("mean_track_length").get<double>(),
                 AnalyzerValue(analyzer, "Mean track length"),
                 1e-5);
-    EXPECT_NEAR(sfm.Get("mean_reprojection_error").AsDouble(),
+    EXPECT_NEAR(sfm.at("mean_reprojection_error").get<double>(),
                 AnalyzerValue(analyzer, "Mean reprojection error"),
                 1e-5);
     EXPECT_EQ(
-        sfm.Get("num_models").AsInt(),
+        sfm.at("num_models").get<int64_t>(),
         static_cast<int64_t>(
             ListSparseModels(JoinPaths(JoinPaths(SceneDir(), spec), "sparse"))
                 .size()));
     // Pose errors against the synthetic ground truth cover exactly the
     // registered images of the largest model.
-    const JsonValue& pose = sfm.Get("pose_errors");
-    EXPECT_EQ(pose.Get("num_gt_images").AsInt(), 10);
-    EXPECT_EQ(pose.Get("num_evaluated").AsInt(),
-              sfm.Get("num_registered").AsInt());
-    if (sfm.Get("num_registered").AsInt() >= 3) {
-      EXPECT_TRUE(pose.Get("aligned").AsBool());
+    const Json& pose = sfm.at("pose_errors");
+    EXPECT_EQ(pose.at("num_gt_images").get<int64_t>(), 10);
+    EXPECT_EQ(pose.at("num_evaluated").get<int64_t>(),
+              sfm.at("num_registered").get<int64_t>());
+    if (sfm.at("num_registered").get<int64_t>() >= 3) {
+      EXPECT_TRUE(pose.at("aligned").get<bool>());
     }
     ++checked;
   }
   EXPECT_EQ(checked, 2);
   // Exhaustive: all N(N-1)/2 pairs; recall 1 by construction.
-  EXPECT_EQ(Method("exhaustive").Get("tam").AsInt(), 45);
+  EXPECT_EQ(Method("exhaustive").at("tam").get<int64_t>(), 45);
   EXPECT_DOUBLE_EQ(
-      Method("exhaustive").Get("retrieval").Get("recall").AsDouble(), 1.0);
+      Method("exhaustive").at("retrieval").at("recall").get<double>(), 1.0);
 }
 
 TEST_F(GcnBenchmarkEndToEnd, OracleHasTheBestUsefulRatio) {
-  const JsonValue& oracle = Method("oracle");
-  ASSERT_EQ(oracle.Get("status").AsString(), "ok");
-  EXPECT_DOUBLE_EQ(oracle.Get("retrieval").Get("precision").AsDouble(), 1.0);
-  EXPECT_DOUBLE_EQ(oracle.Get("retrieval").Get("recall").AsDouble(), 1.0);
-  const double oracle_ratio = oracle.Get("um_over_tam").AsDouble();
-  for (const JsonValue& method : Methods().AsArray()) {
-    if (method.Get("status").AsString() != "ok") continue;
-    EXPECT_GE(oracle_ratio, method.Get("um_over_tam").AsDouble())
-        << method.Get("method").AsString();
+  const Json& oracle = Method("oracle");
+  ASSERT_EQ(oracle.at("status").get<std::string>(), "ok");
+  EXPECT_DOUBLE_EQ(oracle.at("retrieval").at("precision").get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(oracle.at("retrieval").at("recall").get<double>(), 1.0);
+  const double oracle_ratio = oracle.at("um_over_tam").get<double>();
+  for (const Json& method : Methods()) {
+    if (method.at("status").get<std::string>() != "ok") continue;
+    EXPECT_GE(oracle_ratio, method.at("um_over_tam").get<double>())
+        << method.at("method").get<std::string>();
   }
 }
 
@@ -200,9 +202,9 @@ TEST_F(GcnBenchmarkEndToEnd, SecondRunReadsTheCache) {
   EXPECT_EQ(ReadTextFile(log), before);
   EXPECT_NE(output.find("features cached"), std::string::npos) << output;
   EXPECT_NE(output.find("exhaustive: matching cached"), std::string::npos);
-  const JsonValue again = ReadJsonFile(JoinPaths(Out(), "results.json"));
-  const JsonValue& methods = again.Get("scenes").AsArray().at(0).Get("methods");
-  EXPECT_EQ(methods.Dump(), Methods().Dump());
+  const Json again = ReadJsonFile(JoinPaths(Out(), "results.json"));
+  const Json& methods = again.at("scenes").at(0).at("methods");
+  EXPECT_EQ(methods, Methods());
 }
 
 TEST_F(GcnBenchmarkEndToEnd, GroundTruthTriangulationAgreesWithOverlaps) {
@@ -281,9 +283,8 @@ TEST_F(GcnBenchmarkEndToEnd, PoseFilteredLabelMatchingMatchesOnlyKeptPairs) {
   EXPECT_EQ(QuerySqlInt(first.database_path,
                         "SELECT COUNT(*) FROM two_view_geometries"),
             static_cast<int64_t>(selection.kept.size()));
-  const JsonValue record =
-      ReadJsonFile(JoinPaths(work_dir, "label_matching.json"));
-  EXPECT_EQ(record.GetIntOr("pairs_skipped", -1),
+  const Json record = ReadJsonFile(JoinPaths(work_dir, "label_matching.json"));
+  EXPECT_EQ(record.value("pairs_skipped", int64_t{-1}),
             static_cast<int64_t>(selection.num_skipped));
   // A second run finds every pair matched in the same database.
   const LabelMatchingSummary again = MatchPosePairsForLabels(

@@ -189,6 +189,32 @@ TEST_F(BadInput, MatcherKnnKZero) {
                      {"--GcnMatching.k must be >= 1 (got 0)"});
 }
 
+TEST_F(BadInput, MatcherUnknownEmbedding) {
+  ExpectMatcherError("--GcnMatching.embedding sift",
+                     {"--GcnMatching.embedding must be empty",
+                      "vlad, onnx, vlad+onnx, imported (got \"sift\")"});
+}
+
+TEST_F(BadInput, MatcherOnnxNeedsNetworkAndImages) {
+  ExpectMatcherError(
+      "--GcnMatching.pairing knn --GcnMatching.embedding onnx",
+      {"--GcnMatching.onnx_path must name the ONNX network", "(got \"\")"});
+  ExpectMatcherError(
+      "--GcnMatching.pairing knn --GcnMatching.embedding onnx "
+      "--GcnMatching.onnx_path net.onnx",
+      {"--GcnMatching.image_path must name the image folder", "(got \"\")"});
+}
+
+TEST_F(BadInput, MatcherOnnxOptions) {
+  ExpectMatcherError("--GcnMatching.onnx_gem_p 0.5",
+                     {"--GcnMatching.onnx_gem_p must be -1 (the model's "
+                      "value) or >= 1 (got 0.5)"});
+  ExpectMatcherError("--GcnMatching.onnx_swap_rb 2",
+                     {"--GcnMatching.onnx_swap_rb must be -1", "(got 2)"});
+  ExpectMatcherError("--GcnMatching.onnx_batch_size 0",
+                     {"--GcnMatching.onnx_batch_size must be >= 1 (got 0)"});
+}
+
 TEST_F(BadInput, MatcherMinNumInliersText) {
   ExpectMatcherError(
       "--GcnMatching.pairing exhaustive "
@@ -551,10 +577,36 @@ TEST_F(BadTrainInput, UnknownAggregation) {
                     "(got \"mean\")"});
 }
 
+TEST_F(BadTrainInput, UnknownFeatureScaling) {
+  ExpectTrainError("--GcnTraining.feature_scaling global",
+                   {"--GcnTraining.feature_scaling must be one of none|query "
+                    "(got \"global\")"});
+}
+
 TEST_F(BadTrainInput, UnknownInitialization) {
   ExpectTrainError("--GcnTraining.initialization zeros",
                    {"--GcnTraining.initialization must be one of "
                     "xavier|distance_prior (got \"zeros\")"});
+}
+
+TEST_F(BadTrainInput, UnknownEmbedding) {
+  ExpectTrainError("--GcnTraining.embedding sift",
+                   {"--GcnTraining.embedding must be one of "
+                    "vlad|onnx|vlad+onnx (got \"sift\")"});
+}
+
+TEST_F(BadTrainInput, OnnxNeedsNetworkAndImageRoot) {
+  ExpectTrainError("--GcnTraining.embedding onnx",
+                   {"--GcnTraining.onnx_path must name the ONNX network when "
+                    "the embedding is onnx (got \"\")"});
+  ExpectTrainError(
+      "--GcnTraining.embedding onnx --GcnTraining.onnx_path net.onnx "
+      "--image_root " +
+          ShellQuote(Path("no_such_images")),
+      {"--image_root must be a folder with one subfolder <scene>/images"});
+  ExpectTrainError("--GcnTraining.onnx_max_image_size 16",
+                   {"--GcnTraining.onnx_max_image_size must be >= 32 (got "
+                    "16)"});
 }
 
 TEST_F(BadTrainInput, ZeroLayerSize) {

@@ -28,6 +28,7 @@ GcnModel MakeModel() {
 void ExpectEqual(const GcnModel& a, const GcnModel& b) {
   EXPECT_TRUE(a.shape == b.shape);
   EXPECT_EQ(a.aggregation, b.aggregation);
+  EXPECT_EQ(a.feature_scaling, b.feature_scaling);
   EXPECT_EQ(a.input_shift, b.input_shift);
   EXPECT_EQ(a.input_scale, b.input_scale);
   EXPECT_EQ(a.params.Values(), b.params.Values());
@@ -66,6 +67,18 @@ TEST(GcnModelFile, RoundTripThroughFile) {
   EXPECT_EQ(loaded.embedding.dim, 12);
   // Byte-identical re-serialisation.
   EXPECT_EQ(SerializeGcnModel(loaded), SerializeGcnModel(model));
+}
+
+TEST(GcnModelFile, FeatureScalingRoundTripAndOnlyWrittenWhenUsed) {
+  GcnModel model = MakeModel();
+  const std::string plain = SerializeGcnModel(model);
+  EXPECT_EQ(plain.find("FEAT"), std::string::npos);
+  EXPECT_EQ(DeserializeGcnModel(plain, "x").feature_scaling,
+            QesFeatureScaling::kNone);
+  model.feature_scaling = QesFeatureScaling::kQueryScale;
+  const std::string scaled = SerializeGcnModel(model);
+  EXPECT_NE(scaled.find("FEAT"), std::string::npos);
+  ExpectEqual(model, DeserializeGcnModel(scaled, "x"));
 }
 
 TEST(GcnModelFile, DefaultShapeRoundTrip) {

@@ -33,25 +33,30 @@ Fixture MakeFixture(const GcnShape& shape,
 class GcnForwardTest : public ::testing::TestWithParam<GcnAggregation> {};
 
 TEST_P(GcnForwardTest, OptimisedAndTrainingPathsEqualReference) {
-  const Fixture f = MakeFixture(test::SmallShape(16), GetParam(), 10);
-  const QesOptions qes{8, 3, 4};
-  GcnScorer scorer(f.model, f.embeddings, 1);
-  GcnWorkspace workspace;
-  for (int q = 0; q < f.knn.NumImages(); ++q) {
-    const QuerySubgraph s = BuildQuerySubgraph(f.knn, q, qes);
-    const GcnGraph<float> graph = MakeGcnGraph(f.model, s, f.embeddings);
-    const ColVector<float> reference =
-        GcnForwardReference(f.model.params, graph);
-    ASSERT_EQ(reference.size(), 8);
-    ColVector<float> training;
-    GcnLossAndGradient<float>(f.model.params, graph, 1.f, nullptr, &training);
-    std::vector<float> optimised;
-    scorer.ScoreSubgraph(s, &workspace, &optimised);
-    ASSERT_EQ(optimised.size(), 8u);
-    const float scale = 1.f + reference.cwiseAbs().maxCoeff();
-    for (int i = 0; i < 8; ++i) {
-      EXPECT_NEAR(training(i), reference(i), 1e-5f * scale);
-      EXPECT_NEAR(optimised[i], reference(i), 1e-4f * scale) << q << " " << i;
+  for (const QesFeatureScaling scaling :
+       {QesFeatureScaling::kNone, QesFeatureScaling::kQueryScale}) {
+    SCOPED_TRACE(QesFeatureScalingName(scaling));
+    Fixture f = MakeFixture(test::SmallShape(16), GetParam(), 10);
+    f.model.feature_scaling = scaling;
+    const QesOptions qes{8, 3, 4};
+    GcnScorer scorer(f.model, f.embeddings, 1);
+    GcnWorkspace workspace;
+    for (int q = 0; q < f.knn.NumImages(); ++q) {
+      const QuerySubgraph s = BuildQuerySubgraph(f.knn, q, qes);
+      const GcnGraph<float> graph = MakeGcnGraph(f.model, s, f.embeddings);
+      const ColVector<float> reference =
+          GcnForwardReference(f.model.params, graph);
+      ASSERT_EQ(reference.size(), 8);
+      ColVector<float> training;
+      GcnLossAndGradient<float>(f.model.params, graph, 1.f, nullptr, &training);
+      std::vector<float> optimised;
+      scorer.ScoreSubgraph(s, &workspace, &optimised);
+      ASSERT_EQ(optimised.size(), 8u);
+      const float scale = 1.f + reference.cwiseAbs().maxCoeff();
+      for (int i = 0; i < 8; ++i) {
+        EXPECT_NEAR(training(i), reference(i), 1e-5f * scale);
+        EXPECT_NEAR(optimised[i], reference(i), 1e-4f * scale) << q << " " << i;
+      }
     }
   }
 }

@@ -12,6 +12,7 @@
 #include "gcn/gcn_test_utils.h"
 #include "test_utils.h"
 #include "util/error.h"
+#include "util/logging.h"
 
 namespace colmap_gcn {
 namespace {
@@ -48,7 +49,6 @@ GcnTrainingOptions SmallOptions() {
   options.num_epochs = 12;
   options.lr_decay_epochs = {9};
   options.early_stopping_patience = 0;
-  options.log = nullptr;
   options.seed = 42;
   return options;
 }
@@ -88,14 +88,13 @@ TEST(GcnTrainer, LearnsClustersBetterThanFixedKnn) {
   }
   const std::vector<GcnTrainingScene> val = {MakeScene(20, "v")};
   const GcnTrainingOptions options = SmallOptions();
-  std::vector<std::string> lines;
-  GcnTrainingOptions logged = options;
-  logged.log = [&lines](const std::string& line) {
-    lines.push_back(line);
-    std::cout << line << std::endl;
-  };
-  GcnTrainer trainer(logged);
-  const GcnModel model = trainer.Train(train, val);
+  test::LogLines lines;
+  GcnTrainer trainer(options);
+  GcnModel model;
+  {
+    const ScopedLogSink capture(&lines);
+    model = trainer.Train(train, val);
+  }
   const auto& history = trainer.History();
   ASSERT_EQ(history.size(), 12u);
   EXPECT_GE(lines.size(), 14u);  // set-up, 12 epochs, done
@@ -206,10 +205,13 @@ TEST(GcnTrainer, DistancePriorIsTheStartAndAKeptCandidate) {
   options.learning_rate = 1e-30;  // below float resolution: no epoch can
                                   // beat the start
   options.weight_decay = 0;
-  std::vector<std::string> lines;
-  options.log = [&lines](const std::string& line) { lines.push_back(line); };
+  test::LogLines lines;
   GcnTrainer trainer(options);
-  const GcnModel model = trainer.Train(train, val);
+  GcnModel model;
+  {
+    const ScopedLogSink capture(&lines);
+    model = trainer.Train(train, val);
+  }
   ASSERT_GE(lines.size(), 2u);
   EXPECT_NE(lines[1].find("epoch 0 (distance prior)"), std::string::npos)
       << lines[1];

@@ -86,6 +86,29 @@ TEST(QuerySubgraph, NodesOrderEdgesAndFeatures) {
   EXPECT_FLOAT_EQ(gx(0, 0), r2 * x(2, 0));
 }
 
+TEST(QuerySubgraph, QueryScaledFeaturesHaveUnitRmsOverOneHopNodes) {
+  const KnnGraph knn = HandBuiltKnn();
+  const QuerySubgraph s = BuildQuerySubgraph(knn, 0, QesOptions{2, 3, 2});
+  EmbeddingMatrix e(8, 2);
+  for (int i = 0; i < 8; ++i) e.row(i) << i + 1.f, (i + 1.f) * (i + 1.f);
+  // 1-hop nodes 1, 2: x = (1, 3), (2, 8); mean square over 2 x 2 values.
+  const float factor = QesFeatureFactor(s, e, QesFeatureScaling::kQueryScale);
+  EXPECT_FLOAT_EQ(factor, 1.f / std::sqrt((1.f + 9.f + 4.f + 64.f) / 4.f));
+  EXPECT_EQ(QesFeatureFactor(s, e, QesFeatureScaling::kNone), 1.f);
+  const auto raw = QesFeatures(s, e);
+  const auto scaled = QesFeatures(s, e, QesFeatureScaling::kQueryScale);
+  EXPECT_TRUE(scaled.isApprox(raw * factor, 1e-6f));
+  EXPECT_NEAR(scaled.topRows(2).squaredNorm() / 4.0, 1.0, 1e-6);
+  // The same collection scaled by 10: the same features (scale-free).
+  const EmbeddingMatrix e10 = e * 10.f;
+  EXPECT_TRUE(QesFeatures(s, e10, QesFeatureScaling::kQueryScale)
+                  .isApprox(scaled, 1e-5f));
+  // 1-hop nodes equal to the query: no division by zero.
+  const EmbeddingMatrix same = EmbeddingMatrix::Ones(8, 2);
+  EXPECT_EQ(QesFeatureFactor(s, same, QesFeatureScaling::kQueryScale), 1.f);
+  EXPECT_STREQ(QesFeatureScalingName(QesFeatureScaling::kQueryScale), "query");
+}
+
 TEST(QuerySubgraph, QueryNeverANodeAndBuilderReusable) {
   const KnnGraph knn = HandBuiltKnn();
   QesOptions options;

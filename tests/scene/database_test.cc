@@ -382,12 +382,11 @@ TEST_F(HandMadeDatabase, ReadOnlyNeverWrites) {
     Database database(path_);
     DatabaseCamera camera = database.ReadAllCameras()[0];
     EXPECT_THROW(database.UpdateCamera(camera), Error);
-    EXPECT_THROW(database.ClearMatchesAndTwoViewGeometries(), Error);
   }
   EXPECT_EQ(ReadFileBytes(path_), before);
 }
 
-TEST_F(HandMadeDatabase, WritesCameraAndClearsMatches) {
+TEST_F(HandMadeDatabase, WritesCamera) {
   {
     Database database(path_, Database::Mode::kReadWrite);
     DatabaseCamera camera;
@@ -404,10 +403,6 @@ TEST_F(HandMadeDatabase, WritesCameraAndClearsMatches) {
     camera.params.push_back(1);
     camera.camera_id = 77;
     EXPECT_THROW(database.UpdateCamera(camera), Error);  // no such camera
-
-    database.ClearMatchesAndTwoViewGeometries();
-    EXPECT_EQ(database.NumMatchedPairs(), 0u);
-    EXPECT_EQ(database.NumTwoViewGeometries(), 0u);
   }
   Database database(path_);
   const DatabaseCamera camera = database.ReadAllCameras()[0];

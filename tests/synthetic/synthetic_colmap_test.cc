@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "scene/reconstruction.h"
-#include "synthetic/evaluation.h"
 #include "synthetic/pair_overlap.h"
 #include "synthetic/scene_generator.h"
+#include "synthetic_evaluation.h"
 #include "test_utils.h"
 #include "util/file.h"
 #include "util/string.h"

@@ -10,8 +10,8 @@
 #include <string>
 
 #include "scene/reconstruction.h"
-#include "synthetic/evaluation.h"
 #include "synthetic/pair_overlap.h"
+#include "synthetic_evaluation.h"
 #include "util/file.h"
 #include "util/string.h"
 

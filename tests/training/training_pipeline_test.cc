@@ -139,11 +139,12 @@ TEST(TrainingPipeline, ThresholdSelectionMaximisesMeanF) {
   EXPECT_EQ(selected, SelectGcnThreshold(model, {scene}, 2));
   const double selected_f =
       ScorePairSet(PairsAtThreshold(candidates, selected), scene).F();
-  for (int step = 1; step <= 19; ++step) {
-    EXPECT_LE(
-        ScorePairSet(PairsAtThreshold(candidates, 0.05f * step), scene).F(),
-        selected_f + 1e-12)
-        << "threshold " << 0.05f * step;
+  std::vector<float> grid = {0.01f, 0.02f, 0.97f, 0.98f, 0.99f, 0.999f};
+  for (int step = 1; step <= 19; ++step) grid.push_back(0.05f * step);
+  for (const float threshold : grid) {
+    EXPECT_LE(ScorePairSet(PairsAtThreshold(candidates, threshold), scene).F(),
+              selected_f + 1e-12)
+        << "threshold " << threshold;
   }
   EXPECT_EQ(SelectGcnThreshold(model, {}, 1), 0.5f);
 }
@@ -167,6 +168,15 @@ TEST(TrainingPipeline, MergedScenesStackImagesAndMakeCrossPairsUnrelated) {
   EXPECT_EQ(AsSet(merged.unrelated_pairs),
             (std::set<std::pair<int, int>>{
                 {0, 2}, {0, 3}, {0, 4}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
+  EXPECT_EQ(merged.part_of_row, (std::vector<int>{0, 0, 0, 1, 1}));
+  // Pairs across the parts are counted once, in either order.
+  const PairSetScores scores =
+      ScorePairSet({{0, 1}, {3, 0}, {0, 3}, {4, 2}, {3, 4}, {0, 2}}, merged);
+  EXPECT_EQ(scores.num_pairs, 5u);
+  EXPECT_EQ(scores.num_true_positives, 2u);
+  EXPECT_EQ(scores.num_cross_scene, 2u);
+  EXPECT_EQ(scores.num_unrelated, 3u);
+  EXPECT_EQ(ScorePairSet({{3, 0}}, a).num_cross_scene, 0u);
   b.embeddings = EmbeddingMatrix::Zero(2, 3);
   EXPECT_THROW(MergeTrainingScenes("a+b", {a, b}), Error);
 }
@@ -221,9 +231,83 @@ TEST(ModelEvaluation, FixedKComparisonIsConsistent) {
   }
   EXPECT_GE(c.top_k_best.F(), c.top_k_equal.F());
   EXPECT_GT(c.top_k_best.F(), 0.0);
-  const std::string table = FormatFixedKComparison({c, c}, 0.5f);
+  const std::string table = FormatFixedKComparison({c, c});
   EXPECT_NE(table.find("| clusters |"), std::string::npos) << table;
   EXPECT_NE(table.find("of 2 scenes"), std::string::npos) << table;
+}
+
+TEST(ModelEvaluation, TableShowsEachModelsThresholdAndKeptFraction) {
+  GcnTrainingScene scene = ClusteredScene();
+  scene.name = "clusters";
+  GcnModel model = SmallModel();
+  model.info.threshold = 0.25f;
+  const FixedKComparison low = CompareWithFixedK(model, scene, 100, 2);
+  model.info.threshold = 0.75f;
+  FixedKComparison high = CompareWithFixedK(model, scene, 100, 2);
+  high.scene = "clusters-high";
+  EXPECT_EQ(low.num_images, static_cast<int>(scene.embeddings.rows()));
+  EXPECT_EQ(low.num_candidates, GcnCandidatePairs(model, scene, 1).size());
+  EXPECT_EQ(high.num_candidates, low.num_candidates);
+  EXPECT_GE(low.gcn.num_pairs, high.gcn.num_pairs);
+  ASSERT_GT(low.num_candidates, 0u);
+  EXPECT_DOUBLE_EQ(low.KeptFraction(),
+                   static_cast<double>(low.gcn.num_pairs) / low.num_candidates);
+  const std::string table = FormatFixedKComparison({low, high});
+  EXPECT_NE(table.find("| clusters | " + std::to_string(low.num_images) +
+                       " | 0.25 | " + std::to_string(low.num_candidates) +
+                       " | " + std::to_string(low.gcn.num_pairs) + " | "),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("| clusters-high | " + std::to_string(low.num_images) +
+                       " | 0.75 | "),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("P >= 0.85 at R >= 0.8"), std::string::npos) << table;
+  EXPECT_EQ(table.find("| collection |"), std::string::npos) << table;
+  high.is_collection = true;
+  high.gcn.num_cross_scene = 1;
+  const std::string with_collection = FormatFixedKComparison({low, high});
+  EXPECT_NE(with_collection.find("| collection |"), std::string::npos);
+  EXPECT_NE(with_collection.find("| clusters-high | " +
+                                 std::to_string(high.num_images) + " | " +
+                                 std::to_string(high.gcn.num_pairs) + " | "),
+            std::string::npos)
+      << with_collection;
+}
+
+TEST(ModelEvaluation, FoldsFileListsModelsAndTheirScenes) {
+  TemporaryDirectory dir("folds_test");
+  const std::string path = JoinPaths(dir.Path(), "folds.txt");
+  WriteFileAtomically(path,
+                      "# model scenes\n"
+                      "a.gcnmodel s1,s2\n"
+                      "\n"
+                      "  b.gcnmodel   s3  \n");
+  const std::vector<EvaluationFold> folds = ReadEvaluationFolds(path);
+  ASSERT_EQ(folds.size(), 2u);
+  EXPECT_EQ(folds[0].model_path, "a.gcnmodel");
+  EXPECT_EQ(folds[0].scenes, (std::vector<std::string>{"s1", "s2"}));
+  EXPECT_EQ(folds[1].model_path, "b.gcnmodel");
+  EXPECT_EQ(folds[1].scenes, (std::vector<std::string>{"s3"}));
+  auto error_of = [&](const std::string& text) {
+    WriteFileAtomically(path, text);
+    try {
+      ReadEvaluationFolds(path);
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("a.gcnmodel\n").find("line 1: expected"),
+            std::string::npos);
+  EXPECT_NE(error_of("a.gcnmodel s1 extra\n").find("line 1: expected"),
+            std::string::npos);
+  EXPECT_NE(error_of("a.gcnmodel s1\nb.gcnmodel s2,s1\n")
+                .find("line 2: scene s1 listed twice"),
+            std::string::npos);
+  EXPECT_NE(error_of("# nothing\n").find("lists no fold"), std::string::npos);
+  EXPECT_THROW(ReadEvaluationFolds(JoinPaths(dir.Path(), "missing.txt")),
+               Error);
 }
 
 TEST(ModelEvaluation, EqualRecallBaselineCountsWrongPairs) {
@@ -250,7 +334,7 @@ TEST(ModelEvaluation, EqualRecallBaselineCountsWrongPairs) {
                          scene)
                 .num_true_positives,
             c.gcn.num_true_positives);
-  const std::string table = FormatFixedKComparison({c}, 0.5f);
+  const std::string table = FormatFixedKComparison({c});
   EXPECT_NE(table.find("| clusters | " +
                        std::to_string(scene.unrelated_pairs.size()) + " | "),
             std::string::npos)
@@ -296,7 +380,7 @@ TEST(ModelEvaluation, PrecisionAtTargetRecallIsReportedForBothRankings) {
   }
   EXPECT_DOUBLE_EQ(c.gcn_precision_at_recall,
                    BestPrecisionAtRecall(ranked, scene, kPrecisionAtRecall));
-  const std::string table = FormatFixedKComparison({c}, 0.5f);
+  const std::string table = FormatFixedKComparison({c});
   EXPECT_NE(table.find("Best precision at recall >= 0.8"), std::string::npos)
       << table;
   EXPECT_NE(table.find("| tight | "), std::string::npos) << table;

@@ -1,8 +1,12 @@
 #pragma once
 
+// Evaluating a COLMAP run on a synthetic scene against its ground truth, for
+// the synthetic COLMAP tests and the synthetic_eval tool.
+
 #include <string>
 #include <vector>
 
+#include "scene/database.h"
 #include "scene/reconstruction.h"
 #include "synthetic/pair_overlap.h"
 
@@ -31,7 +35,8 @@ struct PoseAlignmentResult {
 
 // Matches model images to ground-truth images by name and aligns the model's
 // camera centres to the ground truth with a similarity transform (Umeyama,
-// least squares). Throws Error if fewer than 3 images match.
+// least squares). Throws Error if fewer than 3 images match or their
+// centres are collinear.
 PoseAlignmentResult AlignToGroundTruth(const Reconstruction& ground_truth,
                                        const Reconstruction& model);
 
@@ -46,9 +51,8 @@ struct TwoViewGeometryRow {
   int config = 0;
   int num_inliers = 0;
 
-  // Verified: config CALIBRATED, UNCALIBRATED, PLANAR, PANORAMIC,
-  // PLANAR_OR_PANORAMIC or MULTIPLE with at least min_num_inliers inliers.
-  bool IsVerified(int min_num_inliers = 15) const;
+  // IsVerifiedTwoViewGeometry (scene/database.h).
+  bool IsVerified(int min_num_inliers = kDefaultMinNumInliers) const;
 };
 
 // Reads two_view_geometries with image names (opened read-only). Throws
@@ -86,7 +90,7 @@ OverlapAgreement CompareOverlapWithVerification(
     const std::vector<TwoViewGeometryRow>& geometries,
     const std::vector<std::string>& distractor_names,
     double threshold = 0.3,
-    int min_num_inliers = 15,
+    int min_num_inliers = kDefaultMinNumInliers,
     double low_threshold = 0.05);
 
 }  // namespace colmap_gcn

@@ -1,11 +1,10 @@
-#include "synthetic/evaluation.h"
+#include "synthetic_evaluation.h"
 
 #include <algorithm>
 #include <map>
 #include <set>
 
-#include <Eigen/Geometry>
-
+#include "math/similarity_transform.h"
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -42,20 +41,14 @@ PoseAlignmentResult AlignToGroundTruth(const Reconstruction& ground_truth,
                src.size(),
                " model images are in the ground truth");
   }
-  Eigen::Matrix3Xd src_matrix(3, src.size());
-  Eigen::Matrix3Xd dst_matrix(3, dst.size());
-  for (size_t i = 0; i < src.size(); ++i) {
-    src_matrix.col(i) = src[i];
-    dst_matrix.col(i) = dst[i];
+  Similarity3d model_to_gt;
+  if (!EstimateSimilarity(src, dst, &model_to_gt)) {
+    ThrowError("cannot align: the model's camera centres are collinear");
   }
-  const Eigen::Matrix4d transform =
-      Eigen::umeyama(src_matrix, dst_matrix, true);
-  result.scale = transform.block<3, 1>(0, 0).norm();
+  result.scale = model_to_gt.scale;
   std::vector<double> errors;
   for (size_t i = 0; i < src.size(); ++i) {
-    const Eigen::Vector3d aligned =
-        transform.block<3, 3>(0, 0) * src[i] + transform.block<3, 1>(0, 3);
-    errors.push_back((aligned - dst[i]).norm());
+    errors.push_back((model_to_gt.Transform(src[i]) - dst[i]).norm());
   }
   std::sort(errors.begin(), errors.end());
   const size_t n = errors.size();
@@ -87,9 +80,7 @@ Reconstruction ReadLargestModel(const std::string& sparse_path) {
 }
 
 bool TwoViewGeometryRow::IsVerified(int min_num_inliers) const {
-  const bool good_config = config == 2 || config == 3 || config == 4 ||
-                           config == 5 || config == 6 || config == 8;
-  return good_config && num_inliers >= min_num_inliers;
+  return IsVerifiedTwoViewGeometry(config, num_inliers, min_num_inliers);
 }
 
 std::vector<TwoViewGeometryRow> ReadTwoViewGeometries(
