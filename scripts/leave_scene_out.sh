@@ -16,7 +16,11 @@
 # collection (pairs across scenes unrelated), so the model sees unrelated
 # photos. Scenes missing from CORPUS are left out with a message. Folds
 # whose model exists are not retrained (delete it to retrain).
-# Environment: COLMAP_GCN_BUILD (default build), SEED (0), THREADS (2).
+# Environment: COLMAP_GCN_BUILD (default build), SEED (0), THREADS (2),
+# ONNX_PATH (the network, for models trained with
+# --GcnTraining.embedding onnx | vlad+onnx; passed to the evaluator),
+# EXTRA_TRAIN (comma list of further scenes in CORPUS every fold trains on,
+# e.g. synthetic ones; never evaluated here).
 set -euo pipefail
 REPO="$(cd "$(dirname "$0")/.." && pwd)"
 CORPUS="$(realpath -m "${1:-$REPO/../corpus}")"
@@ -27,6 +31,8 @@ BUILD="${COLMAP_GCN_BUILD:-build}"
 COLMAP="$BUILD/bin/colmap"
 SEED="${SEED:-0}"
 THREADS="${THREADS:-2}"
+EVAL_FLAGS=()
+if [ -n "${ONNX_PATH:-}" ]; then EVAL_FLAGS=(--onnx_path "$ONNX_PATH"); fi
 
 # Fixed before any fold was trained: sizes spread over the folds, each fold
 # one small, one mid-sized and one large scene.
@@ -66,7 +72,7 @@ train_fold() {
   [ -f "$model" ] && return 0
   "$COLMAP" gcn_train \
     --benchmark_path "$CORPUS" \
-    --scenes "$train,${train//,/+}" \
+    --scenes "$train,${train//,/+}${EXTRA_TRAIN:+,$EXTRA_TRAIN}" \
     --validation_scenes "$validation" \
     --output_path "$model.tmp" \
     --GcnTraining.k1 40 --GcnTraining.k2 5 --GcnTraining.u 10 \
@@ -109,6 +115,7 @@ mv "$OUT/folds.txt.tmp" "$OUT/folds.txt"
   --folds_path "$OUT/folds.txt" \
   --max_k 40 \
   --num_threads "$THREADS" \
+  "${EVAL_FLAGS[@]}" \
   --output_path "$OUT/table.md"
 
 # Unrelated photos: one collection of the scenes of folds 0 and 1.
@@ -122,4 +129,5 @@ train_fold "$OUT/collection.gcnmodel" "${FOLDS[3]},${FOLDS[4]}" "${FOLDS[2]}" \
   --scenes "${collection//,/+}" \
   --max_k 40 \
   --num_threads "$THREADS" \
+  "${EVAL_FLAGS[@]}" \
   --output_path "$OUT/collection.md"
