@@ -84,7 +84,7 @@ class RetrievalEndToEnd : public testing::Test {
     CreateDirIfNotExists(sparse);
     ASSERT_EQ(Colmap("mapper --database_path " + database + " --image_path " +
                          ImagePath() + " --output_path " + sparse +
-                         " --Mapper.num_threads 2",
+                         " --Mapper.num_threads 1",
                      &output),
               0)
         << output;

@@ -1,0 +1,248 @@
+// The two commands users run first, end to end on a small generated scene:
+// `colmap gcn_matcher` with the shipped default model (no model flag) and
+// `colmap gcn_reconstructor`. Extraction, matching and mapping each run on
+// one thread, so every run sees the same database (multi-threaded
+// extraction numbers the images in completion order) and the same RANSAC
+// and mapper draws: the assertions are about our pairs, not COLMAP's
+// scheduling.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "feature/pairs_io.h"
+#include "scene/database.h"
+#include "scene/reconstruction.h"
+#include "scene/reconstruction_stats.h"
+#include "test_utils.h"
+#include "util/file.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+namespace {
+
+using test::FrontendExe;
+using test::RealColmapExe;
+using test::RunShell;
+
+// 20 views of the orbit: the default model keeps 46 of the 190 pairs and the
+// mapper registers all 20. On 16 views it keeps little beyond each image's
+// two best neighbours (32 pairs), too thin a chain: 12 of 16 registered.
+const size_t kNumImages = 20;
+// The default --GcnMatching.min_pairs_per_image.
+const int kMinPairsPerImage = 2;
+
+std::string BinDir() {
+  return FrontendExe().substr(0, FrontendExe().find_last_of('/'));
+}
+
+std::string ShippedModelPath() {
+  return JoinPaths(COLMAP_GCN_SOURCE_DIR, "colmap_gcn/models/default.gcnmodel");
+}
+
+// Our front end first on PATH, as users run it; no $COLMAP_GCN_MODEL, so a
+// run without --GcnMatching.model_path finds the model the way a user's
+// does.
+int Colmap(const std::string& args, std::string* output) {
+  return RunShell("env -u COLMAP_GCN_MODEL PATH=" + ShellQuote(BinDir()) +
+                      ":$PATH " + ShellQuote(FrontendExe()) + " " + args,
+                  output);
+}
+
+// The pair ids a pairs file names, checking on the way that every name is
+// an image of the database, no pair joins an image to itself and no pair is
+// listed twice (in either order); *degree counts pairs per image.
+std::set<image_pair_t> CheckedPairIds(const std::string& pairs_path,
+                                      const std::vector<DatabaseImage>& images,
+                                      std::map<std::string, int>* degree) {
+  std::map<std::string, image_t> ids;
+  for (const DatabaseImage& image : images) ids[image.name] = image.image_id;
+  std::set<image_pair_t> pair_ids;
+  for (const auto& [name1, name2] : ReadPairsFile(pairs_path)) {
+    EXPECT_EQ(ids.count(name1), 1u) << name1;
+    EXPECT_EQ(ids.count(name2), 1u) << name2;
+    if (ids.count(name1) == 0 || ids.count(name2) == 0) continue;
+    EXPECT_NE(name1, name2);
+    EXPECT_TRUE(
+        pair_ids.insert(ImagePairToPairId(ids.at(name1), ids.at(name2))).second)
+        << name1 << " " << name2 << " listed twice";
+    ++(*degree)[name1];
+    ++(*degree)[name2];
+  }
+  return pair_ids;
+}
+
+std::set<image_pair_t> GeometryPairIds(const std::string& database_path) {
+  std::set<image_pair_t> pair_ids;
+  for (const auto& info : Database(database_path).ReadTwoViewGeometryInfos()) {
+    pair_ids.insert(info.pair_id);
+  }
+  return pair_ids;
+}
+
+// Images registered in the largest model a mapper run wrote.
+size_t MaxRegistered(const std::string& sparse_path) {
+  size_t max_registered = 0;
+  for (const std::string& model_path : ListSparseModels(sparse_path)) {
+    Reconstruction reconstruction;
+    reconstruction.Read(model_path);
+    max_registered = std::max(max_registered, reconstruction.images.size());
+  }
+  return max_registered;
+}
+
+class DefaultModelEndToEnd : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (RealColmapExe().empty()) return;
+    dir_ = new TemporaryDirectory("colmap_gcn_default_model_e2e");
+    std::string output;
+    ASSERT_EQ(Colmap("gcn_synth --output_path " + ScenePath() +
+                         " --GcnSynth.family ordinary --GcnSynth.num_images " +
+                         std::to_string(kNumImages) + " --GcnSynth.seed 1",
+                     &output),
+              0)
+        << output;
+    // The generator's intrinsics, as a user with a calibrated camera would
+    // pass them.
+    Reconstruction gt;
+    gt.ReadText(ScenePath() + "/gt");
+    std::vector<std::string> params;
+    for (const double param : gt.cameras.begin()->second.params) {
+      params.push_back(std::to_string(param));
+    }
+    camera_args_ = new std::string(
+        " --ImageReader.single_camera 1"
+        " --ImageReader.camera_model PINHOLE"
+        " --ImageReader.camera_params " +
+        StringJoin(params, ",") +
+        " --SiftExtraction.max_num_features 2048"
+        " --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads 1");
+    ASSERT_EQ(Colmap("feature_extractor --database_path " + BasePath() +
+                         " --image_path " + ImagePath() + *camera_args_,
+                     &output),
+              0)
+        << output;
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+    delete camera_args_;
+    camera_args_ = nullptr;
+  }
+  void SetUp() override {
+    if (RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
+    ASSERT_NE(dir_, nullptr);
+    ASSERT_NE(camera_args_, nullptr);
+  }
+
+  static std::string ScenePath() { return JoinPaths(dir_->Path(), "scene"); }
+  static std::string ImagePath() { return JoinPaths(ScenePath(), "images"); }
+  static std::string BasePath() { return JoinPaths(dir_->Path(), "base.db"); }
+
+  static TemporaryDirectory* dir_;
+  // Camera and extraction flags shared by the fixture and gcn_reconstructor.
+  static std::string* camera_args_;
+};
+
+TemporaryDirectory* DefaultModelEndToEnd::dir_ = nullptr;
+std::string* DefaultModelEndToEnd::camera_args_ = nullptr;
+
+TEST_F(DefaultModelEndToEnd, GcnMatcherWithTheShippedModel) {
+  ASSERT_TRUE(ExistsFile(ShippedModelPath()));
+  const std::string database_path = JoinPaths(dir_->Path(), "default.db");
+  ASSERT_EQ(RunShell("cp " + BasePath() + " " + database_path), 0);
+  std::string output;
+  // No model flag: a run that did not find the shipped model would fail
+  // with "no GCN model".
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --SiftMatching.use_gpu 0 --SiftMatching.num_threads 1",
+                   &output),
+            0)
+      << output;
+  const std::string pairs_path = database_path + ".pairs.txt";
+  ASSERT_TRUE(ExistsFile(pairs_path)) << output;
+  EXPECT_NE(output.find("pairs written to " + pairs_path), std::string::npos)
+      << output;
+
+  const std::vector<DatabaseImage> images =
+      Database(database_path).ReadAllImages();
+  ASSERT_EQ(images.size(), kNumImages);
+  std::map<std::string, int> degree;
+  const std::set<image_pair_t> pair_ids =
+      CheckedPairIds(pairs_path, images, &degree);
+  EXPECT_EQ(degree.size(), kNumImages);
+  for (const auto& [name, count] : degree) {
+    EXPECT_GE(count, kMinPairsPerImage) << name;
+  }
+  EXPECT_LE(pair_ids.size(), kNumImages * (kNumImages - 1) / 2);
+  // COLMAP matched exactly the chosen pairs.
+  EXPECT_EQ(GeometryPairIds(database_path), pair_ids);
+
+  // The model it found is the shipped file: naming that file explicitly
+  // gives the same pairs and scores (the pairs are all matched by now, so
+  // this run only pairs).
+  const std::string explicit_pairs_path =
+      JoinPaths(dir_->Path(), "explicit_pairs.txt");
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
+                       " --GcnMatching.model_path " + ShippedModelPath() +
+                       " --GcnMatching.pairs_path " + explicit_pairs_path +
+                       " --SiftMatching.use_gpu 0",
+                   &output),
+            0)
+      << output;
+  EXPECT_EQ(ReadTextFile(explicit_pairs_path), ReadTextFile(pairs_path));
+
+  // Every image registered in one model: the run is repeatable, so anything
+  // less means the pairs lost a view.
+  const std::string sparse_path = JoinPaths(dir_->Path(), "default_sparse");
+  CreateDirIfNotExists(sparse_path);
+  ASSERT_EQ(Colmap("mapper --database_path " + database_path +
+                       " --image_path " + ImagePath() + " --output_path " +
+                       sparse_path + " --Mapper.num_threads 1",
+                   &output),
+            0)
+      << output;
+  EXPECT_EQ(ListSparseModels(sparse_path).size(), 1u);
+  EXPECT_EQ(MaxRegistered(sparse_path), kNumImages);
+}
+
+TEST_F(DefaultModelEndToEnd, GcnReconstructorFromImages) {
+  const std::string workspace_path = JoinPaths(dir_->Path(), "workspace");
+  std::string output;
+  ASSERT_EQ(Colmap("gcn_reconstructor --image_path " + ImagePath() +
+                       " --workspace_path " + workspace_path + *camera_args_ +
+                       " --SiftMatching.use_gpu 0 --SiftMatching.num_threads 1"
+                       " --Mapper.num_threads 1",
+                   &output),
+            0)
+      << output;
+  const std::string database_path = JoinPaths(workspace_path, "database.db");
+  const std::string sparse_path = JoinPaths(workspace_path, "sparse");
+  const std::vector<DatabaseImage> images =
+      Database(database_path).ReadAllImages();
+  ASSERT_EQ(images.size(), kNumImages);
+
+  // COLMAP matched exactly the pairs gcn_matcher chose.
+  std::map<std::string, int> degree;
+  const std::set<image_pair_t> pair_ids =
+      CheckedPairIds(database_path + ".pairs.txt", images, &degree);
+  EXPECT_EQ(degree.size(), kNumImages);
+  EXPECT_EQ(GeometryPairIds(database_path), pair_ids);
+
+  // A model that reads back, with every image registered, as the report
+  // says.
+  ASSERT_FALSE(ListSparseModels(sparse_path).empty()) << output;
+  EXPECT_EQ(MaxRegistered(sparse_path), kNumImages);
+  EXPECT_NE(output.find(std::to_string(kNumImages) + "/" +
+                        std::to_string(kNumImages)),
+            std::string::npos)
+      << output;
+}
+
+}  // namespace
+}  // namespace colmap_gcn
