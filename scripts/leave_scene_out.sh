@@ -34,31 +34,11 @@ THREADS="${THREADS:-2}"
 EVAL_FLAGS=()
 if [ -n "${ONNX_PATH:-}" ]; then EVAL_FLAGS=(--onnx_path "$ONNX_PATH"); fi
 
-# Fixed before any fold was trained: sizes spread over the folds, each fold
-# one small, one mid-sized and one large scene.
-FOLDS=(
-  "entry-P10,dtu-scan37,bm-mold-gold-cape"
-  "fountain-P11,fox,cup-desk"
-  "dino-sparse-ring,box-office,can-tiles"
-  "temple-sparse-ring,bm-ethiopian-head,figure-kitchen"
-  "figurine,bm-mary-rose,giza-rooftop"
-)
-
 if [ ! -d "$CORPUS" ]; then
   echo "leave_scene_out: $CORPUS not found (build it with scripts/label_real_corpus.sh)" >&2
   exit 1
 fi
-present() {  # present <comma list>: the scenes with labels, comma list
-  local kept=""
-  for scene in ${1//,/ }; do
-    if [ -f "$CORPUS/$scene/labels/labels.csv" ]; then
-      kept="$kept${kept:+,}$scene"
-    else
-      echo "leave_scene_out: $scene has no labels in $CORPUS, left out" >&2
-    fi
-  done
-  echo "$kept"
-}
+source "$REPO/scripts/corpus_folds.sh"
 NUM_FOLDS=${#FOLDS[@]}
 for ((i = 0; i < NUM_FOLDS; ++i)); do
   FOLDS[$i]="$(present "${FOLDS[$i]}")"

@@ -28,25 +28,13 @@ COLMAP="$BUILD/bin/colmap"
 SEED="${SEED:-0}"
 THREADS="${THREADS:-2}"
 
-# The same folds as scripts/leave_scene_out.sh.
-TRAIN_SCENES="entry-P10,dtu-scan37,bm-mold-gold-cape,fountain-P11,fox,cup-desk,dino-sparse-ring,box-office,can-tiles,temple-sparse-ring,bm-ethiopian-head,figure-kitchen"
-VALIDATION_SCENES="figurine,bm-mary-rose,giza-rooftop"
-
 if [ ! -d "$CORPUS" ]; then
   echo "train_default_model: $CORPUS not found (build it with scripts/label_real_corpus.sh)" >&2
   exit 1
 fi
-present() {  # present <comma list>: the scenes with labels, comma list
-  local kept=""
-  for scene in ${1//,/ }; do
-    if [ -f "$CORPUS/$scene/labels/labels.csv" ]; then
-      kept="$kept${kept:+,}$scene"
-    else
-      echo "train_default_model: $scene has no labels in $CORPUS, left out" >&2
-    fi
-  done
-  echo "$kept"
-}
+source "$REPO/scripts/corpus_folds.sh"
+TRAIN_SCENES="${FOLDS[0]},${FOLDS[1]},${FOLDS[2]},${FOLDS[3]}"
+VALIDATION_SCENES="${FOLDS[4]}"
 TRAIN="$(present "$TRAIN_SCENES")"
 VALIDATION="$(present "$VALIDATION_SCENES")"
 

@@ -98,14 +98,9 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
       float* out = h + static_cast<long>(i) * h1;
       const float* pa = projected_.data() + subgraph.nodes[i] * pstride;
       const float gi = g1[i];
-      if (c == 1.f) {
-        for (int j = 0; j < h1; ++j) {
-          out[j] = pa[j] + base_a[j] - gi * base_b[j];
-        }
-      } else {
-        for (int j = 0; j < h1; ++j) {
-          out[j] = c * pa[j] + base_a[j] - gi * base_b[j];
-        }
+      // c = 1 without scaling: the products are exact, the scores unchanged.
+      for (int j = 0; j < h1; ++j) {
+        out[j] = c * pa[j] + base_a[j] - gi * base_b[j];
       }
       for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
         Axpy(h1,
