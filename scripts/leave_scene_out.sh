@@ -83,6 +83,10 @@ for ((i = 0; i < NUM_FOLDS; ++i)); do
       train="$train${train:+,}${FOLDS[$j]}"
     fi
   done
+  if [ -z "$test" ] || [ -z "$validation" ]; then
+    echo "leave_scene_out: fold $i has no labelled test or validation scene, skipped" >&2
+    continue
+  fi
   model="$OUT/fold$i.gcnmodel"
   echo "== fold $i: test $test | validation $validation | train $train" >&2
   train_fold "$model" "$train" "$validation" "$OUT/fold$i.train.txt" "$@"
