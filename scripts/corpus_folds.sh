@@ -1,7 +1,8 @@
 # Sourced by scripts/leave_scene_out.sh and scripts/train_default_model.sh:
-# the folds of the real labelled corpus (docs/model_card.md), fixed before
+# the recipe's gcn_train settings and the folds of the real labelled corpus
+# (docs/model_card.md), the folds fixed before
 # any fold was trained: sizes spread over the folds, each fold one small,
-# one mid-sized and one large scene. Needs CORPUS set.
+# one mid-sized and one large scene. Needs CORPUS, SEED and THREADS set.
 FOLDS=(
   "entry-P10,dtu-scan37,bm-mold-gold-cape"
   "fountain-P11,fox,cup-desk"
@@ -23,3 +24,25 @@ present() {
   done
   echo "$kept"
 }
+
+# The recipe's gcn_train settings: training QES k1 = 40 (on scenes of
+# 10-150 images k1 = 100 would make most QESs the whole scene), also stored
+# as the recommended test-time settings; the GCN starts from the distance
+# prior with neighbour-mean aggregation (docs/gcn.md), is fine-tuned with
+# Adam and kept at the epoch with the best validation AP (epoch 0 = the
+# prior); the decision threshold maximises the mean F on the validation
+# scenes.
+GCN_TRAIN_FLAGS=(
+  --GcnTraining.k1 40 --GcnTraining.k2 5 --GcnTraining.u 10
+  --GcnTraining.test_k1 40 --GcnTraining.test_k2 5 --GcnTraining.test_u 5
+  --GcnTraining.aggregation row
+  --GcnTraining.initialization distance_prior
+  --GcnTraining.optimizer adam --GcnTraining.learning_rate 0.0001
+  --GcnTraining.batch_size 8 --GcnTraining.num_epochs 12
+  --GcnTraining.lr_decay_epochs 8,10
+  --GcnTraining.positive_weight -1
+  --GcnTraining.early_stopping_patience 4
+  --GcnTraining.threshold -1
+  --GcnTraining.seed "$SEED"
+  --GcnTraining.num_threads "$THREADS"
+)

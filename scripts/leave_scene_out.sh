@@ -55,18 +55,7 @@ train_fold() {
     --scenes "$train,${train//,/+}${EXTRA_TRAIN:+,$EXTRA_TRAIN}" \
     --validation_scenes "$validation" \
     --output_path "$model.tmp" \
-    --GcnTraining.k1 40 --GcnTraining.k2 5 --GcnTraining.u 10 \
-    --GcnTraining.test_k1 40 --GcnTraining.test_k2 5 --GcnTraining.test_u 5 \
-    --GcnTraining.aggregation row \
-    --GcnTraining.initialization distance_prior \
-    --GcnTraining.optimizer adam --GcnTraining.learning_rate 0.0001 \
-    --GcnTraining.batch_size 8 --GcnTraining.num_epochs 12 \
-    --GcnTraining.lr_decay_epochs 8,10 \
-    --GcnTraining.positive_weight -1 \
-    --GcnTraining.early_stopping_patience 4 \
-    --GcnTraining.threshold -1 \
-    --GcnTraining.seed "$SEED" \
-    --GcnTraining.num_threads "$THREADS" \
+    "${GCN_TRAIN_FLAGS[@]}" \
     "$@" >"$log" 2>&1 ||
     { echo "leave_scene_out: training $model failed, see $log" >&2; exit 1; }
   mv "$model.tmp" "$model"

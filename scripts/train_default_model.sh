@@ -38,28 +38,11 @@ VALIDATION_SCENES="${FOLDS[4]}"
 TRAIN="$(present "$TRAIN_SCENES")"
 VALIDATION="$(present "$VALIDATION_SCENES")"
 
-# Scenes of <= 40 images make every QES the whole scene at k1 = 40; the
-# recommended test-time settings stored in the model are the training ones.
-# The GCN starts from the distance prior with neighbour-mean aggregation
-# (docs/gcn.md), is fine-tuned with Adam and kept at the epoch with the
-# best validation AP (epoch 0 = the prior); the decision threshold is the
-# one maximising the mean F on the validation scenes.
 "$COLMAP" gcn_train \
   --benchmark_path "$CORPUS" \
   --scenes "$TRAIN,${TRAIN//,/+}" \
   --validation_scenes "$VALIDATION" \
   --output_path "$MODEL" \
   --GcnTraining.feature_scaling query \
-  --GcnTraining.k1 40 --GcnTraining.k2 5 --GcnTraining.u 10 \
-  --GcnTraining.test_k1 40 --GcnTraining.test_k2 5 --GcnTraining.test_u 5 \
-  --GcnTraining.aggregation row \
-  --GcnTraining.initialization distance_prior \
-  --GcnTraining.optimizer adam --GcnTraining.learning_rate 0.0001 \
-  --GcnTraining.batch_size 8 --GcnTraining.num_epochs 12 \
-  --GcnTraining.lr_decay_epochs 8,10 \
-  --GcnTraining.positive_weight -1 \
-  --GcnTraining.early_stopping_patience 4 \
-  --GcnTraining.threshold -1 \
-  --GcnTraining.seed "$SEED" \
-  --GcnTraining.num_threads "$THREADS" \
+  "${GCN_TRAIN_FLAGS[@]}" \
   "$@"
