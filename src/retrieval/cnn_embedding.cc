@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <iostream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -28,8 +27,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "retrieval/hash.h"
+#include "retrieval/keyed_row_file.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -507,70 +508,8 @@ std::string DefaultCnnCachePath(const std::string& database_path) {
 
 namespace {
 
-typedef std::unordered_map<uint64_t, Eigen::RowVectorXf> CnnCacheEntries;
-
-CnnCacheEntries ReadCnnCache(const std::string& path, int dim) {
-  CnnCacheEntries entries;
-  if (path.empty() || !ExistsFile(path)) return entries;
-  std::string contents;
-  try {
-    contents = ReadTextFile(path);
-  } catch (const Error&) {
-    return entries;
-  }
-  const size_t header_size = 8 + 4 + 4 + 8;
-  if (contents.size() < header_size + 8 ||
-      std::memcmp(contents.data(), kCacheMagic, 8) != 0) {
-    return entries;
-  }
-  uint32_t version, stored_dim;
-  uint64_t num_entries, stored_hash;
-  std::memcpy(&version, contents.data() + 8, 4);
-  std::memcpy(&stored_dim, contents.data() + 12, 4);
-  std::memcpy(&num_entries, contents.data() + 16, 8);
-  const size_t entry_size = 8 + 4 * static_cast<size_t>(stored_dim);
-  if (version != kVersion || stored_dim != static_cast<uint32_t>(dim) ||
-      num_entries > contents.size() / entry_size ||
-      contents.size() != header_size + num_entries * entry_size + 8) {
-    return entries;
-  }
-  std::memcpy(&stored_hash, contents.data() + contents.size() - 8, 8);
-  if (HashBytes(contents.data(), contents.size() - 8) != stored_hash) {
-    return entries;
-  }
-  const char* data = contents.data() + header_size;
-  for (uint64_t i = 0; i < num_entries; ++i, data += entry_size) {
-    uint64_t key;
-    std::memcpy(&key, data, 8);
-    Eigen::RowVectorXf row(dim);
-    std::memcpy(row.data(), data + 8, 4 * static_cast<size_t>(dim));
-    entries[key] = std::move(row);
-  }
-  return entries;
-}
-
-void WriteCnnCache(const std::string& path,
-                   int dim,
-                   const std::vector<std::pair<uint64_t, const float*>>& rows) {
-  std::string out(kCacheMagic, 8);
-  const uint32_t stored_dim = static_cast<uint32_t>(dim);
-  const uint64_t num_entries = rows.size();
-  out.append(reinterpret_cast<const char*>(&kVersion), 4);
-  out.append(reinterpret_cast<const char*>(&stored_dim), 4);
-  out.append(reinterpret_cast<const char*>(&num_entries), 8);
-  for (const auto& [key, data] : rows) {
-    out.append(reinterpret_cast<const char*>(&key), 8);
-    out.append(reinterpret_cast<const char*>(data),
-               4 * static_cast<size_t>(dim));
-  }
-  const uint64_t hash = HashBytes(out.data(), out.size());
-  out.append(reinterpret_cast<const char*>(&hash), 8);
-  try {
-    WriteFileAtomically(path, out);
-  } catch (const Error& error) {
-    std::cerr << "warning: CNN embedding cache not written: " << error.what()
-              << "\n";
-  }
+std::string CnnCacheHeader() {
+  return std::string(reinterpret_cast<const char*>(&kVersion), 4);
 }
 
 }  // namespace
@@ -593,7 +532,8 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
   const std::vector<DatabaseImage> images = database.ReadAllImages();
   const int dim = network.DescriptorDim();
   const uint64_t config_key = network.ConfigKey();
-  const CnnCacheEntries cache = ReadCnnCache(cache_path, dim);
+  const KeyedRows cache =
+      ReadKeyedRowFile(cache_path, kCacheMagic, CnnCacheHeader(), dim);
   FloatMatrix descriptors(images.size(), dim);
   std::vector<uint64_t> keys(images.size());
   image_ids->clear();
@@ -621,7 +561,12 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
         if (!present.count(key)) rows.emplace_back(key, row.data());
       }
     }
-    WriteCnnCache(cache_path, dim, rows);
+    WriteKeyedRowFile(cache_path,
+                      kCacheMagic,
+                      CnnCacheHeader(),
+                      dim,
+                      rows,
+                      "CNN embedding cache");
   };
   // Images [0, done) have their descriptors.
   size_t done = 0;
@@ -682,7 +627,7 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
                       images.size(),
                       local_stats.num_cached,
                       timer.ElapsedSeconds());
-        std::cerr << line << "\n";
+        LOG(INFO) << line;
       }
       if (!cache_path.empty() && local_stats.num_computed > 0 &&
           end < images.size() && timer.ElapsedSeconds() - last_write > 30) {

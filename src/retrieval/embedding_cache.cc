@@ -4,10 +4,10 @@
 //   float32[dim], then uint64 HashBytes of everything before.
 #include "retrieval/embedding_cache.h"
 
-#include <cstring>
 #include <unordered_map>
 
 #include "retrieval/hash.h"
+#include "retrieval/keyed_row_file.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/logging.h"
@@ -19,76 +19,12 @@ namespace {
 const char kMagic[8] = {'C', 'G', 'C', 'N', 'E', 'M', 'B', 'C'};
 const uint32_t kVersion = 1;
 
-typedef std::unordered_map<uint64_t, Eigen::RowVectorXf> CacheEntries;
-
-// Entries of a valid cache for this model, or none.
-CacheEntries ReadCache(const std::string& path, const VladEmbedding& model) {
-  CacheEntries entries;
-  if (path.empty() || !ExistsFile(path)) return entries;
-  std::string contents;
-  try {
-    contents = ReadTextFile(path);
-  } catch (const Error&) {
-    return entries;
-  }
-  const size_t header_size = 8 + 4 + 8 + 4 + 8;
-  if (contents.size() < header_size + 8 ||
-      std::memcmp(contents.data(), kMagic, 8) != 0) {
-    return entries;
-  }
-  uint32_t version, dim;
-  uint64_t checksum, num_entries, stored_hash;
-  std::memcpy(&version, contents.data() + 8, 4);
-  std::memcpy(&checksum, contents.data() + 12, 8);
-  std::memcpy(&dim, contents.data() + 20, 4);
-  std::memcpy(&num_entries, contents.data() + 24, 8);
-  const size_t entry_size = 8 + 4 * static_cast<size_t>(dim);
-  if (version != kVersion || checksum != model.Checksum() ||
-      dim != static_cast<uint32_t>(model.OutputDim()) ||
-      num_entries > contents.size() / entry_size ||
-      contents.size() != header_size + num_entries * entry_size + 8) {
-    return entries;
-  }
-  std::memcpy(&stored_hash, contents.data() + contents.size() - 8, 8);
-  if (HashBytes(contents.data(), contents.size() - 8) != stored_hash) {
-    return entries;
-  }
-  const char* data = contents.data() + header_size;
-  for (uint64_t i = 0; i < num_entries; ++i, data += entry_size) {
-    uint64_t key;
-    std::memcpy(&key, data, 8);
-    Eigen::RowVectorXf row(dim);
-    std::memcpy(row.data(), data + 8, 4 * static_cast<size_t>(dim));
-    entries[key] = std::move(row);
-  }
-  return entries;
-}
-
-void WriteCache(const std::string& path,
-                const VladEmbedding& model,
-                const std::vector<uint64_t>& keys,
-                const EmbeddingMatrix& embeddings) {
-  std::string out(kMagic, 8);
+// Version and model checksum: a cache of another model is not read.
+std::string CacheHeader(const VladEmbedding& model) {
   const uint64_t checksum = model.Checksum();
-  const uint32_t dim = static_cast<uint32_t>(embeddings.cols());
-  const uint64_t num_entries = keys.size();
-  out.append(reinterpret_cast<const char*>(&kVersion), 4);
-  out.append(reinterpret_cast<const char*>(&checksum), 8);
-  out.append(reinterpret_cast<const char*>(&dim), 4);
-  out.append(reinterpret_cast<const char*>(&num_entries), 8);
-  for (size_t i = 0; i < keys.size(); ++i) {
-    out.append(reinterpret_cast<const char*>(&keys[i]), 8);
-    out.append(reinterpret_cast<const char*>(embeddings.row(i).data()),
-               4 * static_cast<size_t>(dim));
-  }
-  const uint64_t hash = HashBytes(out.data(), out.size());
-  out.append(reinterpret_cast<const char*>(&hash), 8);
-  try {
-    WriteFileAtomically(path, out);
-  } catch (const Error& error) {
-    // A read-only folder only loses the cache.
-    LOG(WARNING) << "embedding cache not written: " << error.what();
-  }
+  std::string header(reinterpret_cast<const char*>(&kVersion), 4);
+  header.append(reinterpret_cast<const char*>(&checksum), 8);
+  return header;
 }
 
 }  // namespace
@@ -114,7 +50,8 @@ EmbeddingMatrix ComputeDatabaseEmbeddings(const Database& database,
   THROW_CHECK(image_ids != nullptr);
   num_threads = EffectiveNumThreads(num_threads);
   const std::vector<DatabaseImage> images = database.ReadAllImages();
-  const CacheEntries cache = ReadCache(cache_path, embedding);
+  const KeyedRows cache = ReadKeyedRowFile(
+      cache_path, kMagic, CacheHeader(embedding), embedding.OutputDim());
   EmbeddingMatrix embeddings(images.size(), embedding.OutputDim());
   std::vector<uint64_t> keys(images.size());
   image_ids->clear();
@@ -153,7 +90,16 @@ EmbeddingMatrix ComputeDatabaseEmbeddings(const Database& database,
   }
   if (!cache_path.empty() &&
       (local_stats.num_computed > 0 || cache.size() != images.size())) {
-    WriteCache(cache_path, embedding, keys, embeddings);
+    std::vector<std::pair<uint64_t, const float*>> rows;
+    for (size_t i = 0; i < keys.size(); ++i) {
+      rows.emplace_back(keys[i], embeddings.row(i).data());
+    }
+    WriteKeyedRowFile(cache_path,
+                      kMagic,
+                      CacheHeader(embedding),
+                      embedding.OutputDim(),
+                      rows,
+                      "embedding cache");
   }
   if (stats != nullptr) *stats = local_stats;
   return embeddings;
