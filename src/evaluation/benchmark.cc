@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "controllers/colmap_runner.h"
+#include "controllers/feature_extraction.h"
 #include "controllers/gcn_matching.h"
+#include "controllers/incremental_mapping.h"
 #include "controllers/pair_generator_registry.h"
 #include "controllers/pair_matching.h"
 #include "evaluation/common_tracks.h"
@@ -91,13 +93,6 @@ std::string PairSetHash(const std::vector<ImagePair>& pairs) {
     }
   }
   return std::to_string(ids.size()) + "-" + std::to_string(hash);
-}
-
-bool HasOption(const std::vector<std::string>& args, const std::string& name) {
-  for (const std::string& arg : args) {
-    if (arg == name || StringStartsWith(arg, name + "=")) return true;
-  }
-  return false;
 }
 
 // Everything the methods of one scene share.
@@ -183,31 +178,17 @@ void BenchmarkRunner::Extract(SceneContext* scene, SceneResult* result) {
                std::to_string(scene->dataset.image_names.size()) + " images");
   // COLMAP extracts into a scratch file that replaces base.db only when
   // complete, so an interrupted extraction is redone rather than trusted.
-  const std::string partial = scene->base_db + ".partial";
-  for (const char* suffix : {"", "-wal", "-shm"}) {
-    RemovePath(partial + suffix);
-    RemovePath(scene->base_db + suffix);
-  }
-  std::vector<std::string> args = {
-      "--database_path", partial, "--image_path", scene->dataset.image_path};
-  if (!scene->dataset.image_list_path.empty()) {
-    args.push_back("--image_list_path");
-    args.push_back(scene->dataset.image_list_path);
-  }
-  if (scene->dataset.single_camera &&
-      !HasOption(options_.extraction_args, "--ImageReader.single_camera")) {
-    args.push_back("--ImageReader.single_camera");
-    args.push_back("1");
-  }
-  args.insert(args.end(),
-              options_.extraction_args.begin(),
-              options_.extraction_args.end());
-  const Timer timer;
-  Colmap(*scene).Run("feature_extractor", args);
-  result->extraction_seconds = timer.ElapsedSeconds();
-  std::error_code ec;
-  fs::rename(partial, scene->base_db, ec);
-  if (ec) ThrowError("cannot rename ", partial, ": ", ec.message());
+  FeatureExtractionOptions extraction_options;
+  extraction_options.image_path = scene->dataset.image_path;
+  extraction_options.image_list_path = scene->dataset.image_list_path;
+  extraction_options.single_camera = scene->dataset.single_camera;
+  extraction_options.replace_database = true;
+  // A scene with too few images shows as such in every method's row.
+  extraction_options.min_num_images = 0;
+  extraction_options.colmap_args = options_.extraction_args;
+  result->extraction_seconds =
+      ExtractFeatures(Colmap(*scene), scene->base_db, extraction_options)
+          .seconds;
   Json record = Json::object();
   record["seconds"] = result->extraction_seconds;
   record["session"] = session_;
@@ -473,30 +454,19 @@ Json BenchmarkRunner::MapMethod(const SceneContext& scene,
     return run;
   }
   const std::string sparse = JoinPaths(dir, "sparse");
-  RemovePath(sparse);
-  CreateDirIfNotExists(sparse);
-  std::vector<std::string> args = {"--database_path",
-                                   JoinPaths(dir, "database.db"),
-                                   "--image_path",
-                                   scene.dataset.image_path,
-                                   "--output_path",
-                                   sparse};
-  if (!HasOption(options_.mapper_args, "--Mapper.num_threads")) {
-    args.push_back("--Mapper.num_threads");
-    args.push_back(std::to_string(options_.mapper_num_threads));
-  }
-  if (!HasOption(options_.mapper_args, "--Mapper.min_model_size")) {
-    // COLMAP discards models under 10 images; the benchmark's small scenes
-    // would lose every partial model, which the tables should show.
-    args.push_back("--Mapper.min_model_size");
-    args.push_back(std::to_string(options_.mapper_min_model_size));
-  }
-  args.insert(
-      args.end(), options_.mapper_args.begin(), options_.mapper_args.end());
+  IncrementalMappingOptions mapping_options;
+  mapping_options.image_path = scene.dataset.image_path;
+  mapping_options.num_threads = options_.mapper_num_threads;
+  // COLMAP discards models under 10 images; the benchmark's small scenes
+  // would lose every partial model, which the tables should show.
+  mapping_options.min_model_size = options_.mapper_min_model_size;
+  mapping_options.replace_models = true;
+  mapping_options.colmap_args = options_.mapper_args;
   Progress(scene.dataset.name, method.spec + ": mapper");
   const Timer timer;
   try {
-    Colmap(scene).Run("mapper", args);
+    RunIncrementalMapping(
+        Colmap(scene), JoinPaths(dir, "database.db"), sparse, mapping_options);
   } catch (const Error& error) {
     // COLMAP 3.8's mapper exits 1 when it builds no model: for the tables
     // that is a result (0 registered, the paper's "Fail"), not an error.

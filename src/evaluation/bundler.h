@@ -43,7 +43,6 @@ struct BundlerFile {
 
 // Throws Error naming the file (and line) on malformed input.
 BundlerFile ReadBundlerFile(const std::string& path);
-void WriteBundlerFile(const std::string& path, const BundlerFile& bundle);
 
 // Converts to a COLMAP model. Camera i is image_names[i] with image size
 // image_sizes[i] (width, height). Registered cameras become RADIAL cameras

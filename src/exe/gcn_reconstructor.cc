@@ -1,12 +1,12 @@
 #include "exe/gcn_reconstructor.h"
 
 #include <cstdio>
-#include <filesystem>
 
 #include "controllers/colmap_runner.h"
+#include "controllers/feature_extraction.h"
 #include "controllers/gcn_matching.h"
+#include "controllers/incremental_mapping.h"
 #include "exe/gcn_matcher.h"
-#include "scene/database.h"
 #include "scene/reconstruction.h"
 #include "scene/reconstruction_stats.h"
 #include "util/error.h"
@@ -14,24 +14,8 @@
 #include "util/logging.h"
 #include "util/option_manager.h"
 #include "util/string.h"
-#include "util/timer.h"
 
 namespace colmap_gcn {
-namespace {
-
-// COLMAP's image reader walks the folder recursively and skips what it
-// cannot decode; a folder without a single file cannot give any image.
-bool HoldsAnyFile(const std::string& folder) {
-  std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
-       !ec && it != std::filesystem::recursive_directory_iterator();
-       it.increment(ec)) {
-    if (it->is_regular_file(ec)) return true;
-  }
-  return false;
-}
-
-}  // namespace
 
 int RunGcnReconstructor(int argc, char** argv) {
   std::string image_path;
@@ -53,12 +37,7 @@ int RunGcnReconstructor(int argc, char** argv) {
   }
   manager.Check([&] { matching_options.Check(); });
   CheckSiftMatchingArguments(manager.PassThroughArguments());
-  if (!ExistsDir(image_path)) {
-    ThrowError("image folder not found: ", image_path);
-  }
-  if (!HoldsAnyFile(image_path)) {
-    ThrowError("image folder ", image_path, " holds no files");
-  }
+  CheckImageFolder(image_path);
   CheckOutputFolder(matching_options.matching.colmap_log_path);
   CheckOutputFolder(matching_options.matching.pairs_path);
   CreateDirIfNotExists(workspace_path);
@@ -75,26 +54,12 @@ int RunGcnReconstructor(int argc, char** argv) {
   }
 
   LOG(INFO) << "[1/3] feature_extractor";
-  Timer timer;
-  std::vector<std::string> extraction_args = {
-      "--database_path", database_path, "--image_path", image_path};
-  const auto extraction_options =
+  FeatureExtractionOptions extraction_options;
+  extraction_options.image_path = image_path;
+  extraction_options.colmap_args =
       ArgumentsWithPrefix(args, {"ImageReader.", "SiftExtraction."});
-  extraction_args.insert(extraction_args.end(),
-                         extraction_options.begin(),
-                         extraction_options.end());
-  colmap.Run("feature_extractor", extraction_args);
-  const double extraction_seconds = timer.ElapsedSeconds();
-  {
-    const Database database(database_path);
-    if (database.NumImages() < 2) {
-      ThrowError("colmap feature_extractor read ",
-                 database.NumImages(),
-                 " image(s) from ",
-                 image_path,
-                 "; at least 2 readable images are needed");
-    }
-  }
+  const FeatureExtractionSummary extraction =
+      ExtractFeatures(colmap, database_path, extraction_options);
 
   LOG(INFO) << "[2/3] gcn_matcher";
   matching_options.colmap_args = ArgumentsWithPrefix(args, {"SiftMatching."});
@@ -102,30 +67,21 @@ int RunGcnReconstructor(int argc, char** argv) {
       RunGcnMatching(database_path, matching_options);
 
   LOG(INFO) << "[3/3] mapper";
-  CreateDirIfNotExists(sparse_path);
   if (!ListSparseModels(sparse_path).empty()) {
     ThrowError(sparse_path,
                " already holds models; use a new --workspace_path");
   }
-  timer.Restart();
-  std::vector<std::string> mapper_args = {"--database_path",
-                                          database_path,
-                                          "--image_path",
-                                          image_path,
-                                          "--output_path",
-                                          sparse_path};
-  const auto mapper_options = ArgumentsWithPrefix(args, {"Mapper."});
-  mapper_args.insert(
-      mapper_args.end(), mapper_options.begin(), mapper_options.end());
-  colmap.Run("mapper", mapper_args);
-  const double mapping_seconds = timer.ElapsedSeconds();
+  IncrementalMappingOptions mapping_options;
+  mapping_options.image_path = image_path;
+  mapping_options.colmap_args = ArgumentsWithPrefix(args, {"Mapper."});
+  const IncrementalMappingSummary mapping = RunIncrementalMapping(
+      colmap, database_path, sparse_path, mapping_options);
 
   PrintGcnMatchingReport(matching);
-  const std::vector<std::string> models = ListSparseModels(sparse_path);
   std::printf("\nextraction %.1f s, matching %.1f s, mapping %.1f s\n",
-              extraction_seconds,
+              extraction.seconds,
               matching.matching.matching_seconds,
-              mapping_seconds);
+              mapping.seconds);
   std::printf("%-28s %10s %8s %12s %10s %10s\n",
               "model",
               "registered",
@@ -133,7 +89,7 @@ int RunGcnReconstructor(int argc, char** argv) {
               "observations",
               "track_len",
               "reproj_px");
-  for (const std::string& model_path : models) {
+  for (const std::string& model_path : mapping.model_paths) {
     Reconstruction reconstruction;
     reconstruction.Read(model_path);
     const ReconstructionStatistics stats =
@@ -147,7 +103,7 @@ int RunGcnReconstructor(int argc, char** argv) {
                 stats.mean_track_length,
                 stats.mean_reprojection_error);
   }
-  if (models.empty()) {
+  if (mapping.model_paths.empty()) {
     std::printf("(the mapper produced no model)\n");
     return 1;
   }

@@ -33,17 +33,6 @@ const EnumNames<GcnAggregation>& GcnAggregationNames() {
   return names;
 }
 
-Eigen::MatrixXf QuerySubgraph::DenseAdjacency() const {
-  const int n = NumNodes();
-  Eigen::MatrixXf dense = Eigen::MatrixXf::Zero(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int e = adjacency_offsets[i]; e < adjacency_offsets[i + 1]; ++e) {
-      dense(i, adjacency[e]) = 1.f;
-    }
-  }
-  return dense;
-}
-
 std::vector<float> AggregationMatrix::RowSums() const {
   std::vector<float> sums(num_nodes, 0.f);
   for (int i = 0; i < num_nodes; ++i) {

@@ -70,8 +70,6 @@ struct QuerySubgraph {
   int Degree(int local) const {
     return adjacency_offsets[local + 1] - adjacency_offsets[local];
   }
-  // Dense 0/1 adjacency (tests and the reference path).
-  Eigen::MatrixXf DenseAdjacency() const;
 };
 
 // Sparse aggregation matrix G (CSR, same pattern as the adjacency). Isolated

@@ -100,12 +100,6 @@ class BinaryReader {
   size_t pos_ = 0;
 };
 
-template <typename T>
-void AppendBinary(const T& value, std::string* out) {
-  static_assert(std::is_trivially_copyable<T>::value, "POD only");
-  out->append(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
 ////////////////////////////////////////////////////////////////////////////////
 // Text format helpers.
 ////////////////////////////////////////////////////////////////////////////////
@@ -581,64 +575,6 @@ void Reconstruction::WriteText(const std::string& path) const {
   WriteFileAtomically(cameras_path, cameras_text.str());
   WriteFileAtomically(images_path, images_text.str());
   WriteFileAtomically(JoinPaths(path, "points3D.txt"), points_text.str());
-}
-
-void Reconstruction::WriteBinary(const std::string& path) const {
-  CreateDirIfNotExists(path);
-
-  const std::string cameras_path = JoinPaths(path, "cameras.bin");
-  std::string cameras_data;
-  AppendBinary<uint64_t>(cameras.size(), &cameras_data);
-  for (const auto& [camera_id, camera] : cameras) {
-    CheckedNumParams(camera, cameras_path);
-    AppendBinary<uint32_t>(camera_id, &cameras_data);
-    AppendBinary<int32_t>(camera.model_id, &cameras_data);
-    AppendBinary<uint64_t>(camera.width, &cameras_data);
-    AppendBinary<uint64_t>(camera.height, &cameras_data);
-    for (const double param : camera.params) {
-      AppendBinary<double>(param, &cameras_data);
-    }
-  }
-
-  const std::string images_path = JoinPaths(path, "images.bin");
-  std::string images_data;
-  AppendBinary<uint64_t>(images.size(), &images_data);
-  for (const auto& [image_id, image] : images) {
-    CheckImageArrays(image, images_path);
-    AppendBinary<uint32_t>(image_id, &images_data);
-    for (int k = 0; k < 4; ++k)
-      AppendBinary<double>(image.qvec(k), &images_data);
-    for (int k = 0; k < 3; ++k)
-      AppendBinary<double>(image.tvec(k), &images_data);
-    AppendBinary<uint32_t>(image.camera_id, &images_data);
-    images_data.append(image.name.c_str(), image.name.size() + 1);
-    AppendBinary<uint64_t>(image.points2D.size(), &images_data);
-    for (size_t j = 0; j < image.points2D.size(); ++j) {
-      AppendBinary<double>(image.points2D[j].x(), &images_data);
-      AppendBinary<double>(image.points2D[j].y(), &images_data);
-      AppendBinary<uint64_t>(image.point3D_ids[j], &images_data);
-    }
-  }
-
-  std::string points_data;
-  AppendBinary<uint64_t>(points3D.size(), &points_data);
-  for (const auto& [point3D_id, point] : points3D) {
-    AppendBinary<uint64_t>(point3D_id, &points_data);
-    for (int k = 0; k < 3; ++k)
-      AppendBinary<double>(point.xyz(k), &points_data);
-    for (int k = 0; k < 3; ++k)
-      AppendBinary<uint8_t>(point.color(k), &points_data);
-    AppendBinary<double>(point.error, &points_data);
-    AppendBinary<uint64_t>(point.track.size(), &points_data);
-    for (const TrackElement& element : point.track) {
-      AppendBinary<uint32_t>(element.image_id, &points_data);
-      AppendBinary<uint32_t>(element.point2D_idx, &points_data);
-    }
-  }
-
-  WriteFileAtomically(cameras_path, cameras_data);
-  WriteFileAtomically(images_path, images_data);
-  WriteFileAtomically(JoinPaths(path, "points3D.bin"), points_data);
 }
 
 image_t Reconstruction::FindImageWithName(const std::string& name) const {

@@ -60,12 +60,12 @@ class Reconstruction {
   // the .txt files (binary preferred when all three .bin files exist). In the
   // text format a missing points3D.txt is read as an empty point set (ground
   // truth folders carry only poses); cameras.txt and images.txt are required.
-  // Writers create the folder if needed and write full double precision.
+  // The writer creates the folder if needed and writes full double
+  // precision.
   void Read(const std::string& path);
   void ReadText(const std::string& path);
   void ReadBinary(const std::string& path);
   void WriteText(const std::string& path) const;
-  void WriteBinary(const std::string& path) const;
 
   // Image id by name, or kInvalidImageId.
   image_t FindImageWithName(const std::string& name) const;

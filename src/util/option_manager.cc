@@ -139,6 +139,15 @@ int IntArgument(const std::vector<std::string>& args,
   return default_value;
 }
 
+bool HasArgument(const std::vector<std::string>& args,
+                 const std::string& name) {
+  const std::string option = "--" + name;
+  for (const std::string& arg : args) {
+    if (arg == option || StringStartsWith(arg, option + "=")) return true;
+  }
+  return false;
+}
+
 std::vector<std::string> ArgumentsWithPrefix(
     const std::vector<std::string>& args,
     const std::vector<std::string>& prefixes) {

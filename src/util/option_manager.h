@@ -100,6 +100,10 @@ int IntArgument(const std::vector<std::string>& args,
                 const std::string& name,
                 int default_value);
 
+// Whether pass-through option `name` (e.g. "Mapper.num_threads") is in args,
+// as "--name value" or "--name=value".
+bool HasArgument(const std::vector<std::string>& args, const std::string& name);
+
 template <typename T>
 void OptionManager::AddRequiredOption(const std::string& name,
                                       T* option,

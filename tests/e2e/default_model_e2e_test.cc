@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "e2e_scene.h"
 #include "feature/pairs_io.h"
 #include "scene/database.h"
 #include "scene/reconstruction.h"
@@ -25,7 +26,6 @@
 namespace colmap_gcn {
 namespace {
 
-using test::FrontendExe;
 using test::RealColmapExe;
 using test::RunShell;
 
@@ -37,10 +37,6 @@ const size_t kNumImages = 20;
 // The default --GcnMatching.min_pairs_per_image.
 const int kMinPairsPerImage = 2;
 
-std::string BinDir() {
-  return FrontendExe().substr(0, FrontendExe().find_last_of('/'));
-}
-
 std::string ShippedModelPath() {
   return JoinPaths(COLMAP_GCN_SOURCE_DIR, "colmap_gcn/models/default.gcnmodel");
 }
@@ -49,9 +45,7 @@ std::string ShippedModelPath() {
 // run without --GcnMatching.model_path finds the model the way a user's
 // does.
 int Colmap(const std::string& args, std::string* output) {
-  return RunShell("env -u COLMAP_GCN_MODEL PATH=" + ShellQuote(BinDir()) +
-                      ":$PATH " + ShellQuote(FrontendExe()) + " " + args,
-                  output);
+  return test::RunFrontend(args, output, "-u COLMAP_GCN_MODEL");
 }
 
 // The pair ids a pairs file names, checking on the way that every name is
@@ -101,57 +95,33 @@ class DefaultModelEndToEnd : public testing::Test {
   static void SetUpTestSuite() {
     if (RealColmapExe().empty()) return;
     dir_ = new TemporaryDirectory("colmap_gcn_default_model_e2e");
-    std::string output;
-    ASSERT_EQ(Colmap("gcn_synth --output_path " + ScenePath() +
-                         " --GcnSynth.family ordinary --GcnSynth.num_images " +
-                         std::to_string(kNumImages) + " --GcnSynth.seed 1",
-                     &output),
-              0)
-        << output;
-    // The generator's intrinsics, as a user with a calibrated camera would
-    // pass them.
-    Reconstruction gt;
-    gt.ReadText(ScenePath() + "/gt");
-    std::vector<std::string> params;
-    for (const double param : gt.cameras.begin()->second.params) {
-      params.push_back(std::to_string(param));
-    }
-    camera_args_ = new std::string(
-        " --ImageReader.single_camera 1"
-        " --ImageReader.camera_model PINHOLE"
-        " --ImageReader.camera_params " +
-        StringJoin(params, ",") +
-        " --SiftExtraction.max_num_features 2048"
-        " --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads 1");
-    ASSERT_EQ(Colmap("feature_extractor --database_path " + BasePath() +
-                         " --image_path " + ImagePath() + *camera_args_,
-                     &output),
-              0)
-        << output;
+    scene_ = new test::ExtractedScene;
+    test::MakeExtractedScene(dir_->Path(), kNumImages, scene_);
+    ready_ = !HasFatalFailure();
   }
   static void TearDownTestSuite() {
     delete dir_;
     dir_ = nullptr;
-    delete camera_args_;
-    camera_args_ = nullptr;
+    delete scene_;
+    scene_ = nullptr;
   }
   void SetUp() override {
     if (RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
-    ASSERT_NE(dir_, nullptr);
-    ASSERT_NE(camera_args_, nullptr);
+    ASSERT_TRUE(ready_);
   }
 
-  static std::string ScenePath() { return JoinPaths(dir_->Path(), "scene"); }
-  static std::string ImagePath() { return JoinPaths(ScenePath(), "images"); }
-  static std::string BasePath() { return JoinPaths(dir_->Path(), "base.db"); }
+  static std::string ImagePath() { return scene_->image_path; }
+  static std::string BasePath() { return scene_->database_path; }
 
   static TemporaryDirectory* dir_;
-  // Camera and extraction flags shared by the fixture and gcn_reconstructor.
-  static std::string* camera_args_;
+  // The extracted scene; its extraction flags are gcn_reconstructor's too.
+  static test::ExtractedScene* scene_;
+  static bool ready_;
 };
 
 TemporaryDirectory* DefaultModelEndToEnd::dir_ = nullptr;
-std::string* DefaultModelEndToEnd::camera_args_ = nullptr;
+test::ExtractedScene* DefaultModelEndToEnd::scene_ = nullptr;
+bool DefaultModelEndToEnd::ready_ = false;
 
 TEST_F(DefaultModelEndToEnd, GcnMatcherWithTheShippedModel) {
   ASSERT_TRUE(ExistsFile(ShippedModelPath()));
@@ -216,7 +186,8 @@ TEST_F(DefaultModelEndToEnd, GcnReconstructorFromImages) {
   const std::string workspace_path = JoinPaths(dir_->Path(), "workspace");
   std::string output;
   ASSERT_EQ(Colmap("gcn_reconstructor --image_path " + ImagePath() +
-                       " --workspace_path " + workspace_path + *camera_args_ +
+                       " --workspace_path " + workspace_path +
+                       scene_->extraction_args +
                        " --SiftMatching.use_gpu 0 --SiftMatching.num_threads 1"
                        " --Mapper.num_threads 1",
                    &output),

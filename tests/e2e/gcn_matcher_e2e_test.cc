@@ -8,6 +8,7 @@
 #include <memory>
 #include <set>
 
+#include "e2e_scene.h"
 #include "feature/pairs_io.h"
 #include "gcn/gcn_model.h"
 #include "gcn/model_file.h"
@@ -21,26 +22,18 @@
 namespace colmap_gcn {
 namespace {
 
+using test::FrontendBinDir;
 using test::FrontendExe;
 using test::RealColmapExe;
 using test::RunShell;
 
 const int kNumImages = 16;
 
-std::string BinDir() {
-  return FrontendExe().substr(0, FrontendExe().find_last_of('/'));
-}
-
 // Our front end first on PATH, as users run it.
 int Colmap(const std::string& args,
            std::string* output = nullptr,
            const std::string& env = "") {
-  std::string captured;
-  const int code = RunShell(env + " PATH=" + ShellQuote(BinDir()) + ":$PATH " +
-                                ShellQuote(FrontendExe()) + " " + args,
-                            &captured);
-  if (output != nullptr) *output = captured;
-  return code;
+  return test::RunFrontend(args, output, env);
 }
 
 std::map<image_pair_t, std::pair<int, size_t>> Geometries(
@@ -68,44 +61,25 @@ class GcnMatcherEndToEnd : public testing::Test {
   static void SetUpTestSuite() {
     if (RealColmapExe().empty()) return;
     dir_ = new TemporaryDirectory("colmap_gcn_e2e");
-    std::string output;
-    ASSERT_EQ(Colmap("gcn_synth --output_path " + ScenePath() +
-                         " --GcnSynth.family ordinary --GcnSynth.num_images " +
-                         std::to_string(kNumImages) + " --GcnSynth.seed 1",
-                     &output),
-              0)
-        << output;
-    // The generator's intrinsics, as a user with a calibrated camera would
-    // pass them: the mapper then registers every view of the orbit.
-    Reconstruction gt;
-    gt.ReadText(ScenePath() + "/gt");
-    std::vector<std::string> params;
-    for (const double param : gt.cameras.begin()->second.params) {
-      params.push_back(std::to_string(param));
-    }
-    ASSERT_EQ(Colmap("feature_extractor --database_path " + BasePath() +
-                         " --image_path " + ScenePath() + "/images" +
-                         " --ImageReader.single_camera 1"
-                         " --ImageReader.camera_model PINHOLE"
-                         " --ImageReader.camera_params " +
-                         StringJoin(params, ",") +
-                         " --SiftExtraction.max_num_features 2048"
-                         " --SiftExtraction.use_gpu 0",
-                     &output),
-              0)
-        << output;
+    scene_ = new test::ExtractedScene;
+    // With the generator's intrinsics the mapper registers every view of
+    // the orbit.
+    test::MakeExtractedScene(dir_->Path(), kNumImages, scene_);
+    ready_ = !HasFatalFailure();
   }
   static void TearDownTestSuite() {
     delete dir_;
     dir_ = nullptr;
+    delete scene_;
+    scene_ = nullptr;
   }
   void SetUp() override {
     if (RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
-    ASSERT_NE(dir_, nullptr);
+    ASSERT_TRUE(ready_);
   }
 
-  static std::string ScenePath() { return JoinPaths(dir_->Path(), "scene"); }
-  static std::string BasePath() { return JoinPaths(dir_->Path(), "base.db"); }
+  static std::string ScenePath() { return scene_->scene_path; }
+  static std::string BasePath() { return scene_->database_path; }
   // A fresh copy of the extracted database for one test.
   static std::string CopyOfBase(const std::string& name) {
     const std::string path = JoinPaths(dir_->Path(), name);
@@ -114,9 +88,13 @@ class GcnMatcherEndToEnd : public testing::Test {
   }
 
   static TemporaryDirectory* dir_;
+  static test::ExtractedScene* scene_;
+  static bool ready_;
 };
 
 TemporaryDirectory* GcnMatcherEndToEnd::dir_ = nullptr;
+test::ExtractedScene* GcnMatcherEndToEnd::scene_ = nullptr;
+bool GcnMatcherEndToEnd::ready_ = false;
 
 TEST_F(GcnMatcherEndToEnd, ExhaustivePairingEqualsColmapExhaustiveMatcher) {
   const std::string colmap_db = CopyOfBase("colmap_exhaustive.db");
@@ -395,7 +373,7 @@ TEST_F(GcnMatcherEndToEnd, MissingColmapLeavesDatabaseUntouched) {
   const std::string before = ReadTextFile(database_path);
   std::string output;
   EXPECT_EQ(
-      RunShell("env -u COLMAP_EXE PATH=" + ShellQuote(BinDir()) + " " +
+      RunShell("env -u COLMAP_EXE PATH=" + ShellQuote(FrontendBinDir()) + " " +
                    ShellQuote(FrontendExe()) + " gcn_matcher --database_path " +
                    database_path + " --GcnMatching.pairing exhaustive",
                &output),

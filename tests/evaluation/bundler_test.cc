@@ -1,4 +1,5 @@
 #include "evaluation/bundler.h"
+#include "evaluation/bundler_writer.h"
 
 #include <gtest/gtest.h>
 
@@ -84,8 +85,8 @@ TEST(Bundler, ParsesHandWrittenFile) {
 
   // Writing back and reading gives the same cameras and observations.
   const std::string out = JoinPaths(dir.Path(), "again.out");
-  WriteBundlerFile(out,
-                   ReconstructionToBundler(model, {"a.jpg", "b.jpg", "c.jpg"}));
+  test::WriteBundlerFile(
+      out, ReconstructionToBundler(model, {"a.jpg", "b.jpg", "c.jpg"}));
   const BundlerFile again = ReadBundlerFile(out);
   ASSERT_EQ(again.cameras.size(), 3u);
   EXPECT_FALSE(again.cameras[1].IsRegistered());

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "evaluation/bundler.h"
+#include "evaluation/bundler_writer.h"
 #include "evaluation/common_tracks.h"
 #include "scene/camera_models.h"
 #include "util/error.h"
@@ -110,8 +111,8 @@ TEST(Dataset, OneDSfMLayoutFromGeneratedScene) {
     list_txt += "images/" + name + " 0 300\n";
   }
   WriteFileAtomically(JoinPaths(scene, "list.txt"), list_txt);
-  WriteBundlerFile(JoinPaths(scene, "gt_bundle.out"),
-                   ReconstructionToBundler(truth, list));
+  test::WriteBundlerFile(JoinPaths(scene, "gt_bundle.out"),
+                         ReconstructionToBundler(truth, list));
 
   const std::string out = JoinPaths(dir.Path(), "out");
   const Dataset dataset =

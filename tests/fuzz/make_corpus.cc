@@ -11,9 +11,11 @@
 #include <fstream>
 
 #include "evaluation/bundler.h"
+#include "evaluation/bundler_writer.h"
 #include "fuzz_utils.h"
 #include "gcn/model_file.h"
 #include "scene/camera_models.h"
+#include "scene/model_writer.h"
 #include "scene/reconstruction.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -176,7 +178,7 @@ std::string SparseModelFiles(const Reconstruction& model,
                              bool with_points) {
   TemporaryDirectory dir("colmap_gcn_corpus");
   if (binary) {
-    model.WriteBinary(dir.Path());
+    test::WriteBinaryModel(model, dir.Path());
   } else {
     model.WriteText(dir.Path());
   }
@@ -224,7 +226,7 @@ void Generate(const fs::path& corpus) {
   const BundlerFile bundle = ReconstructionToBundler(model, names);
   TemporaryDirectory dir("colmap_gcn_corpus");
   const std::string bundle_path = JoinPaths(dir.Path(), "bundle.out");
-  WriteBundlerFile(bundle_path, bundle);
+  test::WriteBundlerFile(bundle_path, bundle);
   Put(corpus / "bundler_fuzzer" / "bundle.out", ReadTextFile(bundle_path));
   Put(corpus / "bundler_fuzzer" / "empty.out", "# Bundle file v0.3\n0 0\n");
 }

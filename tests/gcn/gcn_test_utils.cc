@@ -64,6 +64,19 @@ GcnShape SmallShape(int input_dim) {
   return shape;
 }
 
+Eigen::MatrixXf DenseAdjacency(const QuerySubgraph& subgraph) {
+  const int n = subgraph.NumNodes();
+  Eigen::MatrixXf dense = Eigen::MatrixXf::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int e = subgraph.adjacency_offsets[i];
+         e < subgraph.adjacency_offsets[i + 1];
+         ++e) {
+      dense(i, subgraph.adjacency[e]) = 1.f;
+    }
+  }
+  return dense;
+}
+
 void RandomizeModel(GcnModel* model, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> uniform(-0.5f, 0.5f);

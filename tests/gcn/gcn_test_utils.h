@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "gcn/gcn_model.h"
+#include "gcn/query_enclosing_subgraph.h"
 #include "retrieval/knn.h"
 
 namespace colmap_gcn {
@@ -23,6 +24,9 @@ EmbeddingMatrix ClusteredEmbeddings(const std::vector<int>& cluster_sizes,
 
 // Small network shape for fast tests.
 GcnShape SmallShape(int input_dim);
+
+// The subgraph's dense 0/1 adjacency (local node indices).
+Eigen::MatrixXf DenseAdjacency(const QuerySubgraph& subgraph);
 
 // Fills all parameters (and the input standardisation) with random values.
 void RandomizeModel(GcnModel* model, uint32_t seed);

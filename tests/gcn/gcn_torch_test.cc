@@ -140,7 +140,7 @@ CaseResult PrepareCase(const TorchCase& c, const std::string& d) {
     WriteRaw(JoinPaths(d, "features_" + std::to_string(g) + ".bin"),
              raw.data(),
              raw.size());
-    const Eigen::MatrixXf adjacency = s.DenseAdjacency();
+    const Eigen::MatrixXf adjacency = test::DenseAdjacency(s);
     WriteRaw(JoinPaths(d, "adjacency_" + std::to_string(g) + ".bin"),
              adjacency.data(),
              adjacency.size());  // symmetric: order-free

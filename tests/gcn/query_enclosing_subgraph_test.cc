@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "gcn/gcn_test_utils.h"
 #include "util/error.h"
 #include "util/option_check.h"
 
@@ -45,7 +46,7 @@ TEST(QuerySubgraph, NodesOrderEdgesAndFeatures) {
   edge(0, 2);
   edge(1, 3);
   edge(2, 3);
-  EXPECT_EQ(s.DenseAdjacency(), expected);
+  EXPECT_EQ(test::DenseAdjacency(s), expected);
   EXPECT_EQ(s.Degree(4), 0);
 
   // Symmetric aggregation.
@@ -123,7 +124,7 @@ TEST(QuerySubgraph, QueryNeverANodeAndBuilderReusable) {
       EXPECT_EQ(s.num_one_hop, 3);
       for (int i = 0; i < 3; ++i) EXPECT_EQ(s.nodes[i], knn.indices(q, i));
       for (int node : s.nodes) EXPECT_NE(node, q);
-      const Eigen::MatrixXf a = s.DenseAdjacency();
+      const Eigen::MatrixXf a = test::DenseAdjacency(s);
       EXPECT_EQ(a, a.transpose());
       EXPECT_EQ(a.diagonal().sum(), 0.f);
       EXPECT_EQ(BuildQuerySubgraph(knn, q, options).nodes, s.nodes);

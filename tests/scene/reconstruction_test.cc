@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/camera_models.h"
+#include "scene/model_writer.h"
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -181,7 +182,7 @@ TEST(Reconstruction, TextRoundTripIsExact) {
 TEST(Reconstruction, BinaryRoundTripIsExact) {
   TemporaryDirectory dir;
   const Reconstruction model = MakeModel();
-  model.WriteBinary(dir.Path());
+  test::WriteBinaryModel(model, dir.Path());
   Reconstruction read;
   read.ReadBinary(dir.Path());
   ExpectModelsEqual(model, read);
@@ -212,7 +213,7 @@ TEST(Reconstruction, BinaryLayoutMatchesColmap) {
   image.points2D = {Eigen::Vector2d(1, 2)};
   image.point3D_ids = {kInvalidPoint3DId};
   model.images[4] = image;
-  model.WriteBinary(dir.Path());
+  test::WriteBinaryModel(model, dir.Path());
   // u64 n + (u32 id, i32 model, u64 w, u64 h, 3 f64).
   EXPECT_EQ(ReadTextFile(JoinPaths(dir.Path(), "cameras.bin")).size(),
             8u + 4 + 4 + 8 + 8 + 3 * 8);
@@ -332,7 +333,7 @@ TEST(Reconstruction, TextOddWhiteSpaceAndNulBytesAreHandled) {
 
 TEST(Reconstruction, TruncatedBinaryIsErrorNamingFile) {
   TemporaryDirectory dir;
-  MakeModel().WriteBinary(dir.Path());
+  test::WriteBinaryModel(MakeModel(), dir.Path());
   for (const char* name : {"cameras.bin", "images.bin", "points3D.bin"}) {
     const std::string path = JoinPaths(dir.Path(), name);
     const std::string original = ReadTextFile(path);
@@ -361,15 +362,14 @@ TEST(Reconstruction, TruncatedBinaryIsErrorNamingFile) {
   ExpectModelsEqual(MakeModel(), model);
 }
 
-TEST(Reconstruction, WritersRejectInconsistentModels) {
+TEST(Reconstruction, WriterRejectsInconsistentModels) {
   TemporaryDirectory dir;
   Reconstruction model = MakeModel();
   model.cameras[1].params.pop_back();
-  EXPECT_THROW(model.WriteBinary(dir.Path()), Error);
   EXPECT_THROW(model.WriteText(dir.Path()), Error);
   model = MakeModel();
   model.images[2].point3D_ids.pop_back();
-  EXPECT_THROW(model.WriteBinary(dir.Path()), Error);
+  EXPECT_THROW(model.WriteText(dir.Path()), Error);
 }
 
 // The real COLMAP must accept what we write and we must read what it writes.
@@ -385,7 +385,7 @@ TEST(Reconstruction, RealColmapConvertsAndAnalyzesOurModels) {
   const std::string text_again_dir = JoinPaths(dir.Path(), "text_again");
   const std::string ours_bin_dir = JoinPaths(dir.Path(), "ours_bin");
   model.WriteText(text_dir);
-  model.WriteBinary(ours_bin_dir);
+  test::WriteBinaryModel(model, ours_bin_dir);
   CreateDirIfNotExists(bin_dir);
   CreateDirIfNotExists(text_again_dir);
 

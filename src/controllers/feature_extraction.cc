@@ -1,0 +1,79 @@
+#include "controllers/feature_extraction.h"
+
+#include <filesystem>
+
+#include "scene/database.h"
+#include "scene/database_copy.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/option_check.h"
+#include "util/option_manager.h"
+#include "util/timer.h"
+
+namespace colmap_gcn {
+
+void FeatureExtractionOptions::Check() const {
+  CHECK_OPTION(image_path, !image_path.empty(), "name an image folder");
+  CHECK_OPTION_GE(min_num_images, 0);
+}
+
+FeatureExtractionSummary ExtractFeatures(
+    const ColmapRunner& colmap,
+    const std::string& database_path,
+    const FeatureExtractionOptions& options) {
+  options.Check();
+  std::string output_path = database_path;
+  if (options.replace_database) {
+    output_path = database_path + ".partial";
+    RemoveDatabaseFiles(output_path);
+    RemoveDatabaseFiles(database_path);
+  }
+  std::vector<std::string> args = {
+      "--database_path", output_path, "--image_path", options.image_path};
+  if (!options.image_list_path.empty()) {
+    args.push_back("--image_list_path");
+    args.push_back(options.image_list_path);
+  }
+  if (options.single_camera &&
+      !HasArgument(options.colmap_args, "ImageReader.single_camera")) {
+    args.push_back("--ImageReader.single_camera");
+    args.push_back("1");
+  }
+  args.insert(
+      args.end(), options.colmap_args.begin(), options.colmap_args.end());
+  FeatureExtractionSummary summary;
+  const Timer timer;
+  colmap.Run("feature_extractor", args);
+  summary.seconds = timer.ElapsedSeconds();
+  if (options.replace_database) {
+    std::error_code ec;
+    std::filesystem::rename(output_path, database_path, ec);
+    if (ec) ThrowError("cannot rename ", output_path, ": ", ec.message());
+  }
+  summary.num_images = Database(database_path).NumImages();
+  if (summary.num_images < static_cast<size_t>(options.min_num_images)) {
+    ThrowError("colmap feature_extractor read ",
+               summary.num_images,
+               " image(s) from ",
+               options.image_path,
+               "; at least ",
+               options.min_num_images,
+               " readable images are needed");
+  }
+  return summary;
+}
+
+void CheckImageFolder(const std::string& path) {
+  if (!ExistsDir(path)) {
+    ThrowError("image folder not found: ", path);
+  }
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(path, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_regular_file(ec)) return;
+  }
+  ThrowError("image folder ", path, " holds no files");
+}
+
+}  // namespace colmap_gcn
