@@ -19,15 +19,51 @@ namespace {
 // a uniform's 0.75; two separated modes approach 1.
 constexpr double kMinBetweenClassShare = 0.75;
 constexpr size_t kMinCutSamples = 20;
-// Pseudo-samples at the overall rate added to each calibration step, so a
-// step of two pairs cannot claim certainty.
-constexpr double kCalibrationPrior = 2.0;
+// One pseudo-sample at 1/2 added to each calibration step, so a step of a
+// few pairs claims neither certainty nor, at the low end where a failed
+// exploration pair may stand alone, the collection's overall rate.
+constexpr double kCalibrationPrior = 1.0;
+constexpr double kCalibrationPriorRate = 0.5;
+// Classes of common strong neighbours: 0, 1, 2-3, 4-7, >= 8.
+constexpr int kSupportClasses = 5;
 
 uint64_t SplitMix64(uint64_t* state) {
   uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   return z ^ (z >> 31);
+}
+
+double Logit(double p) {
+  const double q = std::clamp(p, 1e-3, 1 - 1e-3);
+  return std::log(q / (1 - q));
+}
+
+double Sigmoid(double x) { return 1 / (1 + std::exp(-x)); }
+
+// Weight of the Gaussian prior on a support class's log-odds offset: a
+// class of a few pairs that all verified strongly gets a moderate raise,
+// not certainty.
+constexpr double kOffsetPrior = 2.0;
+
+// The log-odds offset d in [-6, 6] that maximises the class's likelihood
+// under the prior: sum_i (sigmoid(logits_i + d) - y_i) + kOffsetPrior d = 0
+// (bisection; the left side increases with d).
+double FitLogOddsOffset(const std::vector<double>& logits,
+                        double num_positive) {
+  double low = -6;
+  double high = 6;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double mid = 0.5 * (low + high);
+    double sum = kOffsetPrior * mid - num_positive;
+    for (const double logit : logits) sum += Sigmoid(logit + mid);
+    if (sum < 0) {
+      low = mid;
+    } else {
+      high = mid;
+    }
+  }
+  return 0.5 * (low + high);
 }
 
 uint64_t RowKey(int row1, int row2) {
@@ -55,25 +91,25 @@ void AdaptivePairingOptions::Check() const {
 
 void IsotonicCalibration::Fit(std::vector<std::pair<float, int>> samples) {
   lower_.clear();
+  upper_.clear();
   levels_.clear();
   num_samples_ = samples.size();
   if (samples.empty()) return;
   std::sort(samples.begin(), samples.end());
   struct Block {
     float lower;
+    float upper;
     double sum;
     double weight;
   };
   std::vector<Block> blocks;
-  double total = 0;
   for (size_t i = 0; i < samples.size();) {
-    Block block{samples[i].first, 0, 0};
+    Block block{samples[i].first, samples[i].first, 0, 0};
     size_t j = i;
     for (; j < samples.size() && samples[j].first == samples[i].first; ++j) {
       block.sum += samples[j].second;
       block.weight += 1;
     }
-    total += block.sum;
     i = j;
     blocks.push_back(block);
     // Pool adjacent violators: merge while the previous step is higher.
@@ -83,25 +119,33 @@ void IsotonicCalibration::Fit(std::vector<std::pair<float, int>> samples) {
       if (prev.sum * last.weight <= last.sum * prev.weight) break;
       prev.sum += last.sum;
       prev.weight += last.weight;
+      prev.upper = last.upper;
       blocks.pop_back();
     }
   }
-  const double rate = total / static_cast<double>(samples.size());
   double level = 0;
   for (const Block& block : blocks) {
-    const double shrunk = (block.sum + kCalibrationPrior * rate) /
-                          (block.weight + kCalibrationPrior);
+    const double shrunk =
+        (block.sum + kCalibrationPrior * kCalibrationPriorRate) /
+        (block.weight + kCalibrationPrior);
     level = std::max(level, shrunk);  // shrinking may break monotonicity
     lower_.push_back(block.lower);
+    upper_.push_back(block.upper);
     levels_.push_back(level);
   }
 }
 
 double IsotonicCalibration::Predict(float score) const {
   if (levels_.empty()) return 0;
+  // The step whose range holds the score, or linear between the two steps
+  // around a gap; beyond the samples, the end steps.
   const auto it = std::upper_bound(lower_.begin(), lower_.end(), score);
   if (it == lower_.begin()) return levels_.front();
-  return levels_[static_cast<size_t>(it - lower_.begin()) - 1];
+  const size_t i = static_cast<size_t>(it - lower_.begin()) - 1;
+  if (score <= upper_[i] || i + 1 == levels_.size()) return levels_[i];
+  const double t = (static_cast<double>(score) - upper_[i]) /
+                   (static_cast<double>(lower_[i + 1]) - upper_[i]);
+  return levels_[i] + t * (levels_[i + 1] - levels_[i]);
 }
 
 int LearnStrongInlierCut(const std::vector<size_t>& verified_inliers,
@@ -221,8 +265,8 @@ void AdaptivePairGenerator::Reset() {
   rounds_.clear();
   strong_neighbours_.assign(image_ids_.size(), {});
   strong_cut_ = options_.min_strong_inliers;
-  plain_ = IsotonicCalibration();
-  propagated_ = IsotonicCalibration();
+  calibration_ = IsotonicCalibration();
+  support_offsets_.assign(kSupportClasses, 0.0);
   retries_.assign(image_ids_.size(), 0);
   prepared_ = false;
   next_.clear();
@@ -274,20 +318,33 @@ bool AdaptivePairGenerator::IsStrong(const Candidate& candidate) const {
          candidate.num_inliers >= static_cast<size_t>(strong_cut_);
 }
 
-bool AdaptivePairGenerator::ClosesStrongPath(int c) const {
+int AdaptivePairGenerator::CommonStrongNeighbours(int c) const {
   const std::vector<int>& a = strong_neighbours_[candidates_[c].row1];
   const std::vector<int>& b = strong_neighbours_[candidates_[c].row2];
+  int common = 0;
   size_t i = 0;
   size_t j = 0;
   while (i < a.size() && j < b.size()) {
-    if (a[i] == b[j]) return true;
-    if (a[i] < b[j]) {
+    if (a[i] == b[j]) {
+      ++common;
+      ++i;
+      ++j;
+    } else if (a[i] < b[j]) {
       ++i;
     } else {
       ++j;
     }
   }
-  return false;
+  return common;
+}
+
+int AdaptivePairGenerator::SupportClass(int c) const {
+  const int common = CommonStrongNeighbours(c);
+  if (common == 0) return 0;
+  if (common == 1) return 1;
+  if (common <= 3) return 2;
+  if (common <= 7) return 3;
+  return 4;
 }
 
 void AdaptivePairGenerator::Observe(
@@ -332,12 +389,19 @@ void AdaptivePairGenerator::Observe(
   }
   char seconds[32];
   std::snprintf(seconds, sizeof(seconds), "%.1f", round.seconds);
+  std::string offsets;
+  for (const double offset : support_offsets_) {
+    char text[16];
+    std::snprintf(text, sizeof(text), "%+.1f", offset);
+    offsets += (offsets.empty() ? "" : "/") + std::string(text);
+  }
   LOG(INFO) << label_ << " round " << round.round << ": " << round.num_pairs
             << " pairs attempted (calibrated yield " << yield << "), "
             << round.num_verified << " verified, " << round.num_strong
             << " strong (cut " << round.strong_cut << " inliers); "
             << round.total_attempted << " attempted, " << round.total_strong
-            << " strong in all; " << seconds << " s";
+            << " strong in all; support offsets " << offsets << "; " << seconds
+            << " s";
 }
 
 void AdaptivePairGenerator::Refit() {
@@ -359,25 +423,36 @@ void AdaptivePairGenerator::Refit() {
   for (std::vector<int>& list : strong_neighbours_) {
     std::sort(list.begin(), list.end());
   }
-  // A matched pair counts as closing a strong path when its images have a
-  // strong neighbour in common now; its own edge is never on that path.
-  std::vector<std::pair<float, int>> plain;
-  std::vector<std::pair<float, int>> propagated;
+  std::vector<std::pair<float, int>> samples;
   for (const int c : yielded_) {
     const Candidate& candidate = candidates_[c];
     if (candidate.state != Candidate::State::kObserved) continue;
-    (ClosesStrongPath(c) ? propagated : plain)
-        .emplace_back(candidate.score, IsStrong(candidate) ? 1 : 0);
+    samples.emplace_back(candidate.score, IsStrong(candidate) ? 1 : 0);
   }
-  if (propagated.size() >=
-      static_cast<size_t>(options_.min_propagation_samples)) {
-    plain_.Fit(plain);
-    propagated_.Fit(propagated);
-  } else {
-    plain.insert(plain.end(), propagated.begin(), propagated.end());
-    plain_.Fit(plain);
-    propagated_ = IsotonicCalibration();
+  calibration_.Fit(samples);
+  // A matched pair's support counts the strong neighbours its images have
+  // in common now; its own edge is never on those paths.
+  std::vector<std::vector<double>> logits(kSupportClasses);
+  std::vector<double> num_strong(kSupportClasses, 0);
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (candidate.state != Candidate::State::kObserved) continue;
+    const int support = SupportClass(c);
+    logits[support].push_back(Logit(calibration_.Predict(candidate.score)));
+    num_strong[support] += IsStrong(candidate) ? 1 : 0;
   }
+  for (int k = 0; k < kSupportClasses; ++k) {
+    support_offsets_[k] =
+        logits[k].size() >=
+                static_cast<size_t>(options_.min_propagation_samples)
+            ? FitLogOddsOffset(logits[k], num_strong[k])
+            : 0;
+  }
+}
+
+double AdaptivePairGenerator::Probability(int c) const {
+  return Sigmoid(Logit(calibration_.Predict(candidates_[c].score)) +
+                 support_offsets_[SupportClass(c)]);
 }
 
 void AdaptivePairGenerator::PrepareNext() const {
@@ -443,9 +518,7 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
   for (size_t c = 0; c < candidates_.size(); ++c) {
     if (candidates_[c].state != Candidate::State::kUntried) continue;
     const int ci = static_cast<int>(c);
-    const bool propagated = !propagated_.Empty() && ClosesStrongPath(ci);
-    probability[c] = propagated ? propagated_.Predict(candidates_[c].score)
-                                : plain_.Predict(candidates_[c].score);
+    probability[c] = Probability(ci);
     untried.push_back(ci);
   }
   std::stable_sort(untried.begin(), untried.end(), [&](int a, int b) {
@@ -507,6 +580,8 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
   }
   return block;
 }
+
+AdaptiveGcnPairingOptions::AdaptiveGcnPairingOptions() { gcn.k1 = 100; }
 
 void AdaptiveGcnPairingOptions::Check() const {
   gcn.Check();
@@ -603,7 +678,7 @@ PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptivePairGeneratorSpec() {
   return spec;
 }
 
-GraphMatchPairingOptions::GraphMatchPairingOptions() { knn.k = 40; }
+GraphMatchPairingOptions::GraphMatchPairingOptions() { knn.k = 100; }
 
 void GraphMatchPairingOptions::Check() const {
   knn.Check();

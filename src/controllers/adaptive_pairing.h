@@ -52,10 +52,12 @@ struct AdaptivePairingOptions {
   int min_strong_inliers = 30;
   int max_strong_inliers = 150;
 
-  // A candidate that closes a path of two strong edges is calibrated on
-  // the matched pairs that close such paths once at least this many did
-  // (before that, with all pairs: propagation raises a probability only as
-  // far as this collection has shown it should).
+  // Propagation: candidates are classed by how many strong paths of two
+  // edges they close (common strong neighbours: 0, 1, 2-3, 4-7, >= 8);
+  // once at least this many matched pairs fall in a class, its candidates
+  // get a log-odds offset on the score's calibrated probability, fitted so
+  // that the class's matched pairs are predicted as often strong as they
+  // were; a class with fewer samples gets no offset.
   int min_propagation_samples = 10;
 
   // Connectivity: once no candidate reaches min_pair_yield, every image
@@ -89,7 +91,9 @@ struct AdaptiveRound {
 
 // P(strong | score) by isotonic regression (pool-adjacent-violators) on
 // (score, 0/1) samples: a non-decreasing step function, each step shrunk
-// towards the overall rate by two pseudo-samples. Deterministic.
+// by one pseudo-sample at 1/2 (then made monotone again), linear across
+// the gaps between steps; below the lowest sample, the lowest step.
+// Deterministic.
 class IsotonicCalibration {
  public:
   void Fit(std::vector<std::pair<float, int>> samples);
@@ -99,6 +103,7 @@ class IsotonicCalibration {
 
  private:
   std::vector<float> lower_;    // smallest score of each step
+  std::vector<float> upper_;    // largest score of each step
   std::vector<double> levels_;  // its probability, non-decreasing
   size_t num_samples_ = 0;
 };
@@ -153,7 +158,11 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<int> FirstRound() const;
   std::vector<int> LaterRound() const;
   bool IsStrong(const Candidate& candidate) const;
-  bool ClosesStrongPath(int c) const;
+  double Probability(int c) const;
+  // Strong neighbours the pair's images have in common (the strong paths
+  // of length two it closes), and its support class (kSupportClasses).
+  int CommonStrongNeighbours(int c) const;
+  int SupportClass(int c) const;
   void Refit();
 
   const AdaptivePairingOptions options_;
@@ -169,9 +178,11 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<AdaptiveRound> rounds_;
   std::vector<std::vector<int>> strong_neighbours_;  // sorted rows
   int strong_cut_ = 0;
-  IsotonicCalibration plain_;       // all observed pairs
-  IsotonicCalibration propagated_;  // those closing a strong path
-  std::vector<int> retries_;        // connectivity attempts per row
+  IsotonicCalibration calibration_;  // all observed pairs, by score
+  // Log-odds offset per support class (0, 1, 2-3, 4-7, >= 8 common strong
+  // neighbours).
+  std::vector<double> support_offsets_;
+  std::vector<int> retries_;  // connectivity attempts per row
   Timer round_timer_;
   mutable bool prepared_ = false;
   mutable std::vector<int> next_;
@@ -182,6 +193,9 @@ class AdaptivePairGenerator : public PairGenerator {
 // neighbours of every image with their GCN scores) through
 // AdaptivePairGenerator.
 struct AdaptiveGcnPairingOptions {
+  AdaptiveGcnPairingOptions();
+  // The model's options; k1 defaults to 100 (the paper's test-time k1), not
+  // the model's, since the rounds, not a threshold, choose among them.
   GcnModelPairingOptions gcn;
   AdaptivePairingOptions adaptive;
   void Check() const;
@@ -201,7 +215,7 @@ PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptivePairGeneratorSpec();
 // propagation and stopping rule as adaptive.
 struct GraphMatchPairingOptions {
   GraphMatchPairingOptions();
-  KnnPairingOptions knn;  // k defaults to 40, the default model's k1
+  KnnPairingOptions knn;  // k defaults to 100, adaptive's k1
   AdaptivePairingOptions adaptive;
   void Check() const;
 };

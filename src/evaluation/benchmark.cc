@@ -450,12 +450,10 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
                             : std::to_string(pairs.size()) + " pairs"));
   try {
     const PairMatchingSummary summary =
-        in_the_loop ? MatchPairGenerator(Colmap(scene),
-                                         db,
-                                         generator.get(),
-                                         matching_options,
-                                         &pairs)
-                    : MatchImagePairs(Colmap(scene), db, pairs, matching_options);
+        in_the_loop
+            ? MatchPairGenerator(
+                  Colmap(scene), db, generator.get(), matching_options, &pairs)
+            : MatchImagePairs(Colmap(scene), db, pairs, matching_options);
     if (in_the_loop) {
       run["pairs_hash"] = PairSetHash(pairs);
       run["rounds"] = summary.num_rounds;
