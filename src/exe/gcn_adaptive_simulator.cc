@@ -87,6 +87,12 @@ int RunGcnAdaptiveSimulator(int argc, char** argv) {
     return 0;
   }
   manager.Check([&] { options.Check(); });
+  // Checked before the embedding: the generators that use verification.
+  if (options.pairing != "adaptive" && options.pairing != "graphmatch") {
+    ThrowError("--GcnMatching.pairing ",
+               options.pairing,
+               " does not use verification; simulate adaptive or graphmatch");
+  }
   if (!labels_path.empty() && !ExistsFile(labels_path)) {
     ThrowError("--labels_path ", labels_path, " does not exist");
   }

@@ -442,6 +442,49 @@ TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
                         " of the pairs were already matched"),
             std::string::npos)
       << output;
+
+  // Interrupted in round 2 (COLMAP crashes on its second run): the
+  // database is untouched; the next run replays round 1 from the working
+  // copy and ends with the same pairs.
+  const std::string database_path4 = CopyOfBase("adaptive4.db");
+  const std::string counter = JoinPaths(dir_->Path(), "adaptive_runs");
+  const std::string fake = JoinPaths(dir_->Path(), "crashing_in_round2");
+  WriteFileAtomically(fake,
+                      "#!/bin/sh\n"
+                      "if [ \"$1\" = matches_importer ]; then\n"
+                      "  n=$(cat " +
+                          counter +
+                          " 2>/dev/null || echo 0)\n"
+                          "  echo $((n + 1)) > " +
+                          counter +
+                          "\n"
+                          "  if [ $n -ge 1 ]; then\n"
+                          "    echo 'F1122 matching exploded'; kill -ABRT $$\n"
+                          "  fi\n"
+                          "fi\n"
+                          "exec " +
+                          RealColmapExe() + " \"$@\"\n");
+  ASSERT_EQ(RunShell("chmod +x " + fake), 0);
+  const std::string before = ReadTextFile(database_path4);
+  const std::string pairs_path4 =
+      JoinPaths(dir_->Path(), "adaptive_pairs4.txt");
+  EXPECT_EQ(Colmap("gcn_matcher --database_path " + database_path4 + args +
+                       pairs_path4,
+                   &output,
+                   "COLMAP_EXE=" + fake),
+            1);
+  EXPECT_NE(output.find("adaptive round 1: "), std::string::npos) << output;
+  EXPECT_EQ(ReadTextFile(database_path4), before);
+  EXPECT_TRUE(ExistsFile(database_path4 + ".gcn-partial"));
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path4 + args +
+                       pairs_path4,
+                   &output),
+            0)
+      << output;
+  EXPECT_NE(output.find("resuming the interrupted matching"), std::string::npos)
+      << output;
+  EXPECT_FALSE(ExistsFile(database_path4 + ".gcn-partial"));
+  EXPECT_EQ(ReadTextFile(pairs_path4), ReadTextFile(pairs_path));
 }
 
 TEST_F(GcnMatcherEndToEnd, MissingColmapLeavesDatabaseUntouched) {
