@@ -211,6 +211,66 @@ TEST(AdaptivePairGenerator, LogsEveryRound) {
   EXPECT_NE(sink.lines[0].find(" strong (cut "), std::string::npos);
 }
 
+// Repeated structure: two look-alike groups of 12 images; one wrong pair
+// across them verifies strongly. Blind propagation would then try every
+// cross pair that closes a path through it; the calibrated one keeps to the
+// low score the GCN gives cross pairs, which this collection shows to fail.
+TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
+  std::vector<image_t> image_ids;
+  for (image_t id = 1; id <= 24; ++id) image_ids.push_back(id);
+  const auto group = [](image_t id) { return id <= 12 ? 0 : 1; };
+  std::vector<PairCandidate> candidates;
+  for (image_t a = 1; a <= 24; ++a) {
+    for (image_t b = a + 1; b <= 24; ++b) {
+      const bool same = group(a) == group(b);
+      const float wobble = 0.01f * static_cast<float>((a * 5 + b * 3) % 7);
+      // The repeated structure fools the prior on 1-13 too.
+      const float score = (a == 1 && b == 13) ? 0.95f
+                          : same              ? 0.8f + wobble
+                                              : 0.1f + wobble;
+      candidates.push_back({a, b, score});
+    }
+  }
+  const auto verify = [&](const ImagePair& pair) {
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    const bool wrong_but_strong = std::min(pair.first, pair.second) == 1 &&
+                                  std::max(pair.first, pair.second) == 13;
+    if (group(pair.first) == group(pair.second) || wrong_but_strong) {
+      verification.config = 2;
+      verification.num_inliers = 400;
+    } else if ((pair.first + pair.second) % 3 == 0) {
+      verification.config = 2;
+      verification.num_inliers = 20;  // accidental
+    }
+    return verification;
+  };
+  AdaptivePairingOptions options;
+  options.isolated_retries = 0;
+  AdaptivePairGenerator generator(options, image_ids, candidates);
+  const auto blocks = RunToTheEnd(&generator, verify);
+  size_t within = 0;
+  size_t across_after_first_round = 0;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    for (const ImagePair& pair : blocks[b]) {
+      if (group(pair.first) == group(pair.second)) {
+        ++within;
+      } else if (b > 0) {
+        ++across_after_first_round;
+      }
+    }
+  }
+  // 1-13 is attempted in round 1 (both images' best) and verifies strongly.
+  ASSERT_FALSE(blocks.empty());
+  EXPECT_NE(std::find(blocks[0].begin(), blocks[0].end(), ImagePair(1, 13)),
+            blocks[0].end());
+  EXPECT_EQ(within, 2u * 66u);  // every pair within the groups
+  // The 22 cross pairs closing a path through 1-13 (1-x and 13-y) are
+  // not tried.
+  EXPECT_EQ(across_after_first_round, 0u);
+}
+
 TEST(AdaptivePairGenerator, EveryImageGetsAPairAndIsolatedOnesRetries) {
   RingScene scene(20);
   // Image 21 has candidates but none of them verifies, all low-scored.
