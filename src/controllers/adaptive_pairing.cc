@@ -242,16 +242,6 @@ AdaptivePairGenerator::AdaptivePairGenerator(
       return candidates_[a].score > candidates_[b].score;
     });
   }
-  // Rank: the better of its positions in both images' lists.
-  for (Candidate& candidate : candidates_) candidate.rank = -1;
-  for (size_t row = 0; row < incident_.size(); ++row) {
-    for (size_t r = 0; r < incident_[row].size(); ++r) {
-      Candidate& candidate = candidates_[incident_[row][r]];
-      if (candidate.rank < 0 || static_cast<int>(r) < candidate.rank) {
-        candidate.rank = static_cast<int>(r);
-      }
-    }
-  }
   Reset();
 }
 

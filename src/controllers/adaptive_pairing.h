@@ -144,7 +144,6 @@ class AdaptivePairGenerator : public PairGenerator {
     int row1 = 0;
     int row2 = 0;
     float score = 0.f;
-    int rank = 0;  // min over both images of its rank by score (0: best)
     enum class State : uint8_t {
       kUntried,
       kPending,
