@@ -19,6 +19,9 @@ namespace {
 // a uniform's 0.75; two separated modes approach 1.
 constexpr double kMinBetweenClassShare = 0.75;
 constexpr size_t kMinCutSamples = 20;
+// The lower Otsu class is taken for accidental verifications only when its
+// median is at most this many times COLMAP's default min_num_inliers.
+constexpr double kMaxAccidentalMedian = 2.0;
 // One pseudo-sample at 1/2 added to each calibration step, so a step of a
 // few pairs claims neither certainty nor, at the low end where a failed
 // exploration pair may stand alone, the collection's overall rate.
@@ -184,6 +187,15 @@ int LearnStrongInlierCut(const std::vector<size_t>& verified_inliers,
   if (best / variance < kMinBetweenClassShare) {
     return options.min_strong_inliers;
   }
+  // The accidental mode sits just above COLMAP's verification threshold
+  // (15-35 inliers on a repetitive courtyard); a lower class whose median
+  // is far above it is a weaker mode of real pairs, not accidents.
+  const size_t num_lower = static_cast<size_t>(std::count_if(
+      values.begin(), values.end(), [&](double v) { return v < best_cut; }));
+  if (std::exp(values[num_lower / 2]) >
+      kMaxAccidentalMedian * kDefaultMinNumInliers) {
+    return options.min_strong_inliers;
+  }
   const int cut = static_cast<int>(std::ceil(std::exp(best_cut)));
   return std::clamp(
       cut, options.min_strong_inliers, options.max_strong_inliers);
@@ -273,8 +285,7 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
   prepared_ = false;
   std::vector<ImagePair> block;
   if (next_.empty()) return block;
-  const bool connectivity =
-      !yielded_.empty() && next_yield_ < options_.min_pair_yield;
+  const bool connectivity = next_connectivity_;
   for (const int c : next_) {
     Candidate& candidate = candidates_[c];
     candidate.state = Candidate::State::kPending;
@@ -290,6 +301,8 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
   round.round = static_cast<int>(rounds_.size()) + 1;
   round.num_pairs = block.size();
   round.expected_yield = next_yield_;
+  round.probe = next_probe_;
+  round.connectivity = next_connectivity_;
   rounds_.push_back(round);
   round_timer_.Restart();
   next_.clear();
@@ -385,13 +398,16 @@ void AdaptivePairGenerator::Observe(
     std::snprintf(text, sizeof(text), "%+.1f", offset);
     offsets += (offsets.empty() ? "" : "/") + std::string(text);
   }
-  LOG(INFO) << label_ << " round " << round.round << ": " << round.num_pairs
-            << " pairs attempted (calibrated yield " << yield << "), "
-            << round.num_verified << " verified, " << round.num_strong
-            << " strong (cut " << round.strong_cut << " inliers); "
-            << round.total_attempted << " attempted, " << round.total_strong
-            << " strong in all; support offsets " << offsets << "; " << seconds
-            << " s";
+  LOG(INFO) << label_ << " round " << round.round
+            << (round.probe          ? " (probe)"
+                : round.connectivity ? " (connectivity)"
+                                     : "")
+            << ": " << round.num_pairs << " pairs attempted (calibrated yield "
+            << yield << "), " << round.num_verified << " verified, "
+            << round.num_strong << " strong (cut " << round.strong_cut
+            << " inliers); " << round.total_attempted << " attempted, "
+            << round.total_strong << " strong in all; support offsets "
+            << offsets << "; " << seconds << " s";
 }
 
 void AdaptivePairGenerator::Refit() {
@@ -491,6 +507,8 @@ std::vector<int> AdaptivePairGenerator::FirstRound() const {
 
 std::vector<int> AdaptivePairGenerator::LaterRound() const {
   next_yield_ = -1;
+  next_probe_ = false;
+  next_connectivity_ = false;
   size_t budget = candidates_.size();
   if (options_.max_num_pairs > 0) {
     const size_t max = static_cast<size_t>(options_.max_num_pairs);
@@ -530,9 +548,27 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
     block.push_back(c);
     sum += probability[c];
   }
+  const AdaptiveRound& last = rounds_.back();
+  const double last_yield = last.num_pairs == 0
+                                ? 0.0
+                                : static_cast<double>(last.num_strong) /
+                                      static_cast<double>(last.num_pairs);
+  if (block.empty() && last_yield >= options_.min_pair_yield) {
+    // Probe: the last round verified well, so the candidates just below
+    // it are tried rather than trusted to the extrapolated calibration.
+    const size_t probe_size = std::min(
+        {round_size, budget, std::max<size_t>(10, image_ids_.size() / 2)});
+    for (const int c : untried) {
+      if (block.size() >= probe_size) break;
+      block.push_back(c);
+      sum += probability[c];
+    }
+    next_probe_ = !block.empty();
+  }
   if (block.empty()) {
     // Connectivity: images never attempted, then images without a strong
     // pair, each its most probable untried candidate.
+    next_connectivity_ = true;
     std::vector<uint8_t> attempted(image_ids_.size(), 0);
     for (const int c : yielded_) {
       attempted[candidates_[c].row1] = 1;
@@ -562,6 +598,7 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
   if (!block.empty()) {
     next_yield_ = sum / static_cast<double>(block.size());
   } else {
+    next_connectivity_ = false;
     LOG(INFO) << label_ << ": finished after " << rounds_.size()
               << " rounds; no candidate left with a calibrated probability "
                  "of a strong verification >= "

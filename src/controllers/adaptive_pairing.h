@@ -35,10 +35,13 @@ struct AdaptivePairingOptions {
   // Pairs per later round; -1: the number of images, at least 50.
   int round_size = -1;
 
-  // Later rounds attempt only candidates whose calibrated probability of a
-  // strong verification is at least this, so each round's expected strong
-  // fraction is >= it; matching stops when no candidate reaches it (after
-  // the connectivity attempts below).
+  // Later rounds attempt the candidates whose calibrated probability of a
+  // strong verification is at least this. When none reaches it but the
+  // last round's observed strong fraction did, a probe round takes the
+  // most probable candidates anyway (the calibration only extrapolates
+  // below the scores matched so far); matching stops once no candidate
+  // reaches it and the last round's observed fraction fell below it
+  // (after the connectivity attempts below).
   double min_pair_yield = 0.5;
 
   // Hard budget of attempted pairs; 0: none.
@@ -46,9 +49,10 @@ struct AdaptivePairingOptions {
 
   // The strong-verification cut, in inliers: the Otsu split of
   // log(inliers) over the verified pairs seen so far when that split is
-  // bimodal (between-class share of the variance >= 0.75) and at least 20
-  // pairs verified, clamped to [min_strong_inliers, max_strong_inliers];
-  // otherwise min_strong_inliers.
+  // bimodal (between-class share of the variance >= 0.75), its lower class
+  // looks accidental (median <= 30 inliers, twice COLMAP's default
+  // min_num_inliers) and at least 20 pairs verified, clamped to
+  // [min_strong_inliers, max_strong_inliers]; otherwise min_strong_inliers.
   int min_strong_inliers = 30;
   int max_strong_inliers = 150;
 
@@ -81,6 +85,8 @@ struct AdaptiveRound {
   int round = 0;               // 1-based
   size_t num_pairs = 0;        // attempted in this round
   double expected_yield = -1;  // mean calibrated P(strong); -1: round 1
+  bool probe = false;          // taken below min_pair_yield to probe
+  bool connectivity = false;   // the connectivity attempts
   size_t num_verified = 0;     // of this round's pairs
   size_t num_strong = 0;       // of this round's pairs, at the cut below
   int strong_cut = 0;          // inliers, learned after this round
@@ -186,6 +192,8 @@ class AdaptivePairGenerator : public PairGenerator {
   mutable bool prepared_ = false;
   mutable std::vector<int> next_;
   mutable double next_yield_ = -1;
+  mutable bool next_probe_ = false;
+  mutable bool next_connectivity_ = false;
 };
 
 // --GcnMatching.pairing adaptive: the GCN model's candidates (all k1

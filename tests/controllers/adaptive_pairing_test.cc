@@ -118,6 +118,13 @@ TEST(LearnStrongInlierCut, FloorWithoutTwoModesOrEnoughPairs) {
   }
   EXPECT_EQ(LearnStrongInlierCut(real, options), 40);
   EXPECT_EQ(LearnStrongInlierCut({20, 20, 500, 600}, options), 40);
+  // Two modes of real pairs (60-90 and 400-900 inliers): no accidents.
+  std::vector<size_t> weak_and_strong;
+  for (int i = 0; i < 40; ++i) {
+    weak_and_strong.push_back(60 + (i * 7) % 31);
+    weak_and_strong.push_back(400 + (i * 13) % 501);
+  }
+  EXPECT_EQ(LearnStrongInlierCut(weak_and_strong, options), 40);
   EXPECT_EQ(LearnStrongInlierCut({}, options), 40);
 }
 
@@ -252,12 +259,16 @@ TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
   const auto blocks = RunToTheEnd(&generator, verify);
   size_t within = 0;
   size_t across_after_first_round = 0;
+  size_t through_wrong_pair = 0;  // cross pairs of image 1 or 13
   for (size_t b = 0; b < blocks.size(); ++b) {
     for (const ImagePair& pair : blocks[b]) {
       if (group(pair.first) == group(pair.second)) {
         ++within;
       } else if (b > 0) {
         ++across_after_first_round;
+        const bool closes = pair.first == 1 || pair.second == 1 ||
+                            pair.first == 13 || pair.second == 13;
+        through_wrong_pair += closes ? 1 : 0;
       }
     }
   }
@@ -266,9 +277,16 @@ TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
   EXPECT_NE(std::find(blocks[0].begin(), blocks[0].end(), ImagePair(1, 13)),
             blocks[0].end());
   EXPECT_EQ(within, 2u * 66u);  // every pair within the groups
-  // The 22 cross pairs closing a path through 1-13 (1-x and 13-y) are
-  // not tried.
-  EXPECT_EQ(across_after_first_round, 0u);
+  // Blind propagation would try all 22 cross pairs that close a path
+  // through 1-13 (1-y, x-13). Here cross pairs are tried only by the one
+  // probe round (12 pairs) that ends the run, none verifying strongly.
+  const std::vector<AdaptiveRound>& rounds = generator.Rounds();
+  ASSERT_FALSE(rounds.empty());
+  EXPECT_TRUE(rounds.back().probe);
+  EXPECT_EQ(rounds.back().num_strong, 0u);
+  EXPECT_EQ(across_after_first_round, rounds.back().num_pairs);
+  EXPECT_LE(across_after_first_round, 12u);
+  EXPECT_LT(through_wrong_pair, 6u);
 }
 
 TEST(AdaptivePairGenerator, EveryImageGetsAPairAndIsolatedOnesRetries) {
