@@ -68,8 +68,9 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   GcnMatchingReport report;
   report.pairing = options.pairing;
   const Timer pairing_timer;
-  std::vector<ImagePair> pairs;
-  std::vector<float> scores;
+  // Every generator keeps what it needs from the database, which is closed
+  // before COLMAP replaces it.
+  std::unique_ptr<PairGenerator> generator;
   {
     const Database database(database_path);
     report.num_images = database.NumImages();
@@ -86,15 +87,11 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
                  " images but no descriptors; run colmap feature_extractor "
                  "first");
     }
-    const std::unique_ptr<PairGenerator> generator =
-        CreatePairGenerator(options, database);
+    generator = CreatePairGenerator(options, database);
     StopPointForTests("pairing");
-    pairs = generator->AllPairs();
-    // Scores (the GCN's) go into the pairs file for users to inspect.
-    scores = generator->Scores();
-    const std::string warning = generator->Warning();
-    if (!warning.empty()) LOG(WARNING) << warning;
   }
+  const std::string warning = generator->Warning();
+  if (!warning.empty()) LOG(WARNING) << warning;
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
 
   ColmapRunnerOptions runner_options;
@@ -105,13 +102,16 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   PairMatchingOptions matching_options;
   matching_options.pairs_path = options.matching.pairs_path;
   matching_options.colmap_args = options.colmap_args;
-  matching_options.scores = scores;
   matching_options.block_size = options.matching.block_size;
-  LOG(INFO) << pairs.size() << " pairs from " << options.pairing
-            << " pairing of " << report.num_images
-            << " images; matching with COLMAP " << colmap.Version();
-  report.matching =
-      MatchImagePairs(colmap, database_path, pairs, matching_options);
+  LOG(INFO) << options.pairing << " pairing of " << report.num_images
+            << " images"
+            << (generator->UsesVerification()
+                    ? " in rounds, each matched and verified before the next"
+                    : "")
+            << "; matching with COLMAP " << colmap.Version();
+  report.matching = MatchPairGenerator(
+      colmap, database_path, generator.get(), matching_options);
+  report.pairing_seconds += report.matching.generator_seconds;
   return report;
 }
 

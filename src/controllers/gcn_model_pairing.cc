@@ -275,6 +275,7 @@ std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
   embedding.onnx = options.onnx;
   embedding.onnx_batch_size = options.onnx_batch_size;
   embedding.num_threads = options.num_threads;
+  embedding.use_vlad_cache = options.use_vlad_cache;
   std::vector<image_t> image_ids;
   const EmbeddingMatrix embeddings = ComputeModelEmbeddings(
       model, database, embedding, options.image_path, &image_ids);

@@ -52,6 +52,10 @@ struct GcnModelPairingOptions {
   // Threads for embedding, kNN and inference; -1 uses all cores.
   int num_threads = -1;
 
+  // Keep the VLAD embedding in "<database>.gcn-embedding.bin" (no flag;
+  // off for tools that read databases they must not write beside).
+  bool use_vlad_cache = true;
+
   // Throws OptionError naming the first invalid field.
   void Check() const;
 };

@@ -1,5 +1,6 @@
 #include "controllers/pair_generator_registry.h"
 
+#include "controllers/adaptive_pairing.h"
 #include "controllers/gcn_model_pairing.h"
 #include "controllers/vocab_tree_pairing.h"
 #include "feature/pairing.h"
@@ -98,6 +99,8 @@ const PairGeneratorRegistry& PairGenerators() {
     generators.Register(KnnPairGeneratorSpec());
     generators.Register(VocabTreePairGeneratorSpec());
     generators.Register(SequentialPairGeneratorSpec());
+    generators.Register(AdaptivePairGeneratorSpec());
+    generators.Register(GraphMatchPairGeneratorSpec());
     return generators;
   }();
   return registry;

@@ -31,6 +31,51 @@ std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometriesById(
   return by_id;
 }
 
+// COLMAP's matches_importer on the pairs in blocks of options.block_size,
+// into the working copy at work_path; each block commits.
+void RunMatchesImporter(const ColmapRunner& colmap,
+                        const std::string& database_path,
+                        const std::string& work_path,
+                        const std::string& todo_path,
+                        const std::vector<DatabaseImage>& images,
+                        const PairMatchingOptions& options,
+                        const std::vector<ImagePair>& pairs,
+                        bool stop_between_blocks) {
+  const size_t block_size = static_cast<size_t>(options.block_size);
+  const size_t num_blocks = (pairs.size() + block_size - 1) / block_size;
+  for (size_t block = 0; block < num_blocks; ++block) {
+    const auto begin = pairs.begin() + block * block_size;
+    const auto end =
+        pairs.begin() + std::min(pairs.size(), (block + 1) * block_size);
+    if (num_blocks > 1) {
+      LOG(INFO) << "matching block " << block + 1 << "/" << num_blocks << " ("
+                << end - begin << " pairs)";
+    }
+    WritePairsFile(todo_path, std::vector<ImagePair>(begin, end), images);
+    std::vector<std::string> args = {"--database_path",
+                                     work_path,
+                                     "--match_list_path",
+                                     todo_path,
+                                     "--match_type",
+                                     "pairs"};
+    args.insert(
+        args.end(), options.colmap_args.begin(), options.colmap_args.end());
+    try {
+      colmap.Run("matches_importer", args);
+    } catch (const Error& error) {
+      ThrowError(error.what(),
+                 " -- ",
+                 database_path,
+                 " is unchanged; the pairs matched so far are kept in ",
+                 work_path,
+                 " and the next run resumes from there");
+    }
+    if (stop_between_blocks && block + 1 < num_blocks) {
+      StopPointForTests("matching");
+    }
+  }
+}
+
 // Matches the pairs in blocks on a copy of the database that replaces it
 // once everything is matched. Each block is one COLMAP run that commits
 // into the copy, so an interrupted run resumes with at most one block lost.
@@ -59,38 +104,15 @@ void MatchOnWorkingCopy(const ColmapRunner& colmap,
               << " pairs were matched already)";
   }
   const std::string todo_path = work_path + ".pairs.txt";
-  const size_t block_size = static_cast<size_t>(options.block_size);
-  const size_t num_blocks = (pairs->size() + block_size - 1) / block_size;
   const Timer timer;
-  for (size_t block = 0; block < num_blocks; ++block) {
-    const auto begin = pairs->begin() + block * block_size;
-    const auto end =
-        pairs->begin() + std::min(pairs->size(), (block + 1) * block_size);
-    if (num_blocks > 1) {
-      LOG(INFO) << "matching block " << block + 1 << "/" << num_blocks << " ("
-                << end - begin << " pairs)";
-    }
-    WritePairsFile(todo_path, std::vector<ImagePair>(begin, end), images);
-    std::vector<std::string> args = {"--database_path",
-                                     work_path,
-                                     "--match_list_path",
-                                     todo_path,
-                                     "--match_type",
-                                     "pairs"};
-    args.insert(
-        args.end(), options.colmap_args.begin(), options.colmap_args.end());
-    try {
-      colmap.Run("matches_importer", args);
-    } catch (const Error& error) {
-      ThrowError(error.what(),
-                 " -- ",
-                 database_path,
-                 " is unchanged; the pairs matched so far are kept in ",
-                 work_path,
-                 " and the next run resumes from there");
-    }
-    if (block + 1 < num_blocks) StopPointForTests("matching");
-  }
+  RunMatchesImporter(colmap,
+                     database_path,
+                     work_path,
+                     todo_path,
+                     images,
+                     options,
+                     *pairs,
+                     /*stop_between_blocks=*/true);
   summary->matching_seconds = timer.ElapsedSeconds();
   {
     const CriticalSection critical;
@@ -195,6 +217,163 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
       ++summary.num_verified_pairs;
     }
   }
+  return summary;
+}
+
+PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
+                                       const std::string& database_path,
+                                       PairGenerator* generator,
+                                       const PairMatchingOptions& options,
+                                       std::vector<ImagePair>* pairs) {
+  THROW_CHECK(generator != nullptr);
+  THROW_CHECK(options.scores.empty());
+  if (!generator->UsesVerification()) {
+    std::vector<ImagePair> all_pairs = generator->AllPairs();
+    LOG(INFO) << all_pairs.size() << " pairs chosen";
+    PairMatchingOptions scored = options;
+    scored.scores = generator->Scores();
+    const PairMatchingSummary summary =
+        MatchImagePairs(colmap, database_path, all_pairs, scored);
+    if (pairs != nullptr) *pairs = std::move(all_pairs);
+    return summary;
+  }
+  options.Check();
+  const ScopedFileLock lock(
+      DatabaseLockPath(ResolveDatabasePath(database_path)), database_path);
+  PairMatchingSummary summary;
+  summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
+                                                  : options.pairs_path;
+  const int min_num_inliers = EffectiveMinNumInliers(options);
+  std::vector<DatabaseImage> images;
+  {
+    const Database database(database_path);
+    if (database.Schema() != DatabaseSchema::kColmap38) {
+      ThrowError(database_path,
+                 " has the ",
+                 DatabaseSchemaName(database.Schema()),
+                 " layout; COLMAP ",
+                 colmap.Version(),
+                 " must not write into it");
+    }
+    images = database.ReadAllImages();
+  }
+
+  DatabaseWorkingCopy working_copy(database_path);
+  const std::string& work_path = working_copy.Path();
+  const std::string todo_path = work_path + ".pairs.txt";
+  std::unordered_map<image_pair_t, TwoViewGeometryInfo> geometries;
+  {
+    const Database copy(work_path);
+    geometries = GeometriesById(copy);
+  }
+  if (working_copy.Resumed()) {
+    LOG(INFO) << "resuming the interrupted matching kept in " << work_path
+              << ": its " << geometries.size()
+              << " matched pairs answer the rounds they were chosen in";
+  }
+
+  std::vector<ImagePair> attempted;
+  std::unordered_set<image_pair_t> attempted_ids;
+  generator->Reset();
+  Timer generator_timer;
+  double generator_seconds = 0;
+  while (true) {
+    generator_timer.Restart();
+    if (generator->HasFinished()) {
+      generator_seconds += generator_timer.ElapsedSeconds();
+      break;
+    }
+    const std::vector<ImagePair> block = generator->Next();
+    generator_seconds += generator_timer.ElapsedSeconds();
+    ++summary.num_rounds;
+    std::vector<ImagePair> round_pairs;
+    std::vector<ImagePair> todo;
+    for (const ImagePair& pair : block) {
+      if (pair.first == pair.second) continue;
+      const image_pair_t pair_id = ImagePairToPairId(pair.first, pair.second);
+      if (!attempted_ids.insert(pair_id).second) continue;
+      round_pairs.push_back(pair);
+      attempted.push_back(pair);
+      if (geometries.count(pair_id) > 0) {
+        ++summary.num_already_matched;
+      } else {
+        todo.push_back(pair);
+      }
+    }
+    if (!todo.empty()) {
+      const Timer timer;
+      RunMatchesImporter(colmap,
+                         database_path,
+                         work_path,
+                         todo_path,
+                         images,
+                         options,
+                         todo,
+                         /*stop_between_blocks=*/false);
+      summary.matching_seconds += timer.ElapsedSeconds();
+      const Database copy(work_path);
+      geometries = GeometriesById(copy);
+    }
+    std::vector<PairVerification> verifications;
+    verifications.reserve(round_pairs.size());
+    for (const ImagePair& pair : round_pairs) {
+      PairVerification verification;
+      verification.image_id1 = pair.first;
+      verification.image_id2 = pair.second;
+      const auto it =
+          geometries.find(ImagePairToPairId(pair.first, pair.second));
+      if (it != geometries.end()) {
+        verification.config = it->second.config;
+        verification.num_inliers = it->second.num_inliers;
+      }
+      verifications.push_back(verification);
+    }
+    generator_timer.Restart();
+    generator->Observe(verifications);
+    generator_seconds += generator_timer.ElapsedSeconds();
+
+    // What users inspect: every pair attempted so far, with its score.
+    const std::vector<float> yield_scores = generator->Scores();
+    std::vector<ImagePair> sorted;
+    std::vector<float> sorted_scores;
+    {
+      std::vector<size_t> order(attempted.size());
+      for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::vector<ImagePair> keys;
+      for (const ImagePair& pair : attempted) {
+        keys.emplace_back(std::min(pair.first, pair.second),
+                          std::max(pair.first, pair.second));
+      }
+      std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return keys[a] < keys[b];
+      });
+      for (const size_t i : order) {
+        sorted.push_back(keys[i]);
+        if (yield_scores.size() == attempted.size()) {
+          sorted_scores.push_back(yield_scores[i]);
+        }
+      }
+    }
+    WritePairsFile(summary.pairs_path, sorted, images, sorted_scores);
+    if (!generator->HasFinished()) StopPointForTests("matching");
+  }
+  summary.generator_seconds = generator_seconds;
+  summary.num_attempted_pairs = attempted.size();
+  for (const ImagePair& pair : attempted) {
+    const auto it = geometries.find(ImagePairToPairId(pair.first, pair.second));
+    if (it != geometries.end() &&
+        IsVerifiedTwoViewGeometry(
+            it->second.config, it->second.num_inliers, min_num_inliers)) {
+      ++summary.num_verified_pairs;
+    }
+  }
+  {
+    const CriticalSection critical;
+    working_copy.Commit();
+  }
+  std::error_code ec;
+  std::filesystem::remove(todo_path, ec);
+  if (pairs != nullptr) *pairs = std::move(attempted);
   return summary;
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "feature/pairing.h"
 #include "scene/database.h"
 #include "util/types.h"
 
@@ -47,6 +48,10 @@ struct PairMatchingSummary {
   size_t num_verified_pairs = 0;   // UM: of those, geometrically verified
   double matching_seconds = 0;     // wall time of COLMAP's matching
   std::string pairs_path;          // the pairs file that was written
+  // Generators that use verification (MatchPairGenerator): blocks asked
+  // for, and the time spent in the generator between them.
+  size_t num_rounds = 0;
+  double generator_seconds = 0;
 
   double UsefulRatio() const {
     return num_attempted_pairs == 0
@@ -66,5 +71,25 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
                                     const std::string& database_path,
                                     const std::vector<ImagePair>& pairs,
                                     const PairMatchingOptions& options);
+
+// Matches what `generator` chooses, with MatchImagePairs' guarantees (one
+// DatabaseWorkingCopy replacing the database atomically at the end, resumed
+// after an interruption, the lock held throughout). A generator that does
+// not use verification is drained with AllPairs() and matched by
+// MatchImagePairs (its Scores() as the pairs file's third column); one that
+// does is run as a loop: Next() block -> COLMAP matches the block's pairs
+// that the working copy has no two_view_geometries row for -> Observe()
+// gets every pair of the block with its row (no row: config 0, 0 inliers)
+// -> until HasFinished(). After an interruption the same blocks come back
+// and are answered from the working copy without matching, so the rounds
+// are reconstructed from what the copy holds. The pairs file (all pairs
+// attempted, with the generator's scores) is rewritten after every round.
+// *pairs, if given, receives the attempted pairs in yield order.
+// options.scores must be empty (they come from the generator).
+PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
+                                       const std::string& database_path,
+                                       PairGenerator* generator,
+                                       const PairMatchingOptions& options,
+                                       std::vector<ImagePair>* pairs = nullptr);
 
 }  // namespace colmap_gcn

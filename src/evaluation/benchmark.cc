@@ -389,9 +389,12 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
     run["tau_ct"] = options_.labels.min_common_track_ratio;
   }
   std::vector<ImagePair> pairs;
+  std::unique_ptr<PairGenerator> generator;
   const Timer pairing_timer;
   try {
-    pairs = CreateGenerator(scene, method)->AllPairs();
+    generator = CreateGenerator(scene, method);
+    // Generators that use verification choose their pairs while matching.
+    if (!generator->UsesVerification()) pairs = generator->AllPairs();
   } catch (const Error& error) {
     // Not cached: the method may exist in the next build.
     RemovePath(dir);
@@ -402,10 +405,12 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
     return run;
   }
   run["pairing_seconds"] = pairing_timer.ElapsedSeconds();
-  const std::string pairs_hash = PairSetHash(pairs);
-  run["pairs_hash"] = pairs_hash;
+  const bool in_the_loop = generator->UsesVerification();
+  const std::string pairs_hash = in_the_loop ? "" : PairSetHash(pairs);
+  if (!in_the_loop) run["pairs_hash"] = pairs_hash;
   const auto same = pair_set_owners_.find(pairs_hash);
-  if (same != pair_set_owners_.end() && same->second != method.spec) {
+  if (!in_the_loop && same != pair_set_owners_.end() &&
+      same->second != method.spec) {
     // Identical pairs (e.g. knn with k >= N - 1 and exhaustive): matching
     // and mapping them again would only cost time.
     run["status"] = "ok";
@@ -420,12 +425,22 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
   PairMatchingOptions matching_options;
   matching_options.pairs_path = JoinPaths(dir, "pairs.txt");
   matching_options.colmap_args = options_.matching_args;
-  Progress(
-      name,
-      method.spec + ": matching " + std::to_string(pairs.size()) + " pairs");
+  Progress(name,
+           method.spec + ": matching " +
+               (in_the_loop ? std::string("in rounds")
+                            : std::to_string(pairs.size()) + " pairs"));
   try {
     const PairMatchingSummary summary =
-        MatchImagePairs(Colmap(scene), db, pairs, matching_options);
+        in_the_loop
+            ? MatchPairGenerator(
+                  Colmap(scene), db, generator.get(), matching_options, &pairs)
+            : MatchImagePairs(Colmap(scene), db, pairs, matching_options);
+    if (in_the_loop) {
+      run["pairs_hash"] = PairSetHash(pairs);
+      run["rounds"] = summary.num_rounds;
+      run["pairing_seconds"] =
+          run["pairing_seconds"].get<double>() + summary.generator_seconds;
+    }
     run["status"] = "ok";
     run["tam"] = summary.num_attempted_pairs;
     run["um"] = summary.num_verified_pairs;

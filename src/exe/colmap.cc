@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "exe/gcn_adaptive_simulator.h"
 #include "exe/gcn_benchmark.h"
 #include "exe/gcn_embedding_trainer.h"
 #include "exe/gcn_matcher.h"
@@ -36,6 +37,7 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
   commands.emplace_back("gcn_embedding_trainer", &RunGcnEmbeddingTrainer);
   commands.emplace_back("gcn_vocab_tree_builder", &RunGcnVocabTreeBuilder);
   commands.emplace_back("gcn_benchmark", &RunGcnBenchmark);
+  commands.emplace_back("gcn_adaptive_simulator", &RunGcnAdaptiveSimulator);
   return commands;
 }
 

@@ -34,6 +34,15 @@ struct ImagePairsMatchingOptions {
   void Check() const;
 };
 
+// What COLMAP's geometric verification made of one attempted pair, as its
+// two_view_geometries row holds it (no row: config 0, 0 inliers).
+struct PairVerification {
+  image_t image_id1 = kInvalidImageId;
+  image_t image_id2 = kInvalidImageId;
+  int config = 0;
+  size_t num_inliers = 0;
+};
+
 class PairGenerator {
  public:
   virtual ~PairGenerator() = default;
@@ -54,6 +63,20 @@ class PairGenerator {
   // A one-line note for users about the pairs chosen; "" when there is
   // none.
   virtual std::string Warning() const { return ""; }
+
+  // True for generators whose next block depends on how the previous ones
+  // verified (adaptive pairing): the matcher then matches each block before
+  // it asks for the next one and hands the results to Observe()
+  // (controllers/MatchPairGenerator). Other generators are drained with
+  // AllPairs() and matched in one go.
+  virtual bool UsesVerification() const { return false; }
+
+  // The verification results of pairs this generator handed out (any
+  // order, each pair once); ignored by generators that do not use them.
+  // Scores() then covers every pair handed out so far, in yield order.
+  virtual void Observe(const std::vector<PairVerification>& verifications) {
+    (void)verifications;
+  }
 };
 
 // The next block of a generator's precomputed pair list, pairs[*pair_idx,

@@ -368,6 +368,103 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
   EXPECT_EQ(ReadTextFile(database_path), before);
 }
 
+// Verification in the loop with the default model: rounds of matching,
+// every image paired, the same pairs on a second database and, on the
+// matched one, every round answered from the database without matching.
+TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
+  const std::string args =
+      " --GcnMatching.pairing adaptive --GcnMatching.round_size 10"
+      " --GcnMatching.num_threads 1 --SiftMatching.num_threads 1"
+      " --GcnMatching.pairs_path ";
+  const std::string database_path = CopyOfBase("adaptive.db");
+  const std::string pairs_path = JoinPaths(dir_->Path(), "adaptive_pairs.txt");
+  std::string output;
+  ASSERT_EQ(
+      Colmap("gcn_matcher --database_path " + database_path + args + pairs_path,
+             &output),
+      0)
+      << output;
+  EXPECT_NE(output.find("adaptive round 1: "), std::string::npos) << output;
+  EXPECT_NE(output.find("adaptive round 2: "), std::string::npos) << output;
+  const auto pairs = ReadPairsFile(pairs_path);
+  std::set<std::string> paired;
+  for (const auto& [name1, name2] : pairs) {
+    EXPECT_NE(name1, name2);
+    paired.insert(name1);
+    paired.insert(name2);
+  }
+  EXPECT_EQ(paired.size(), static_cast<size_t>(kNumImages));
+  EXPECT_LT(pairs.size(),
+            static_cast<size_t>(kNumImages * (kNumImages - 1) / 2));
+  EXPECT_EQ(Geometries(database_path).size(), pairs.size());
+
+  const std::string database_path2 = CopyOfBase("adaptive2.db");
+  const std::string pairs_path2 =
+      JoinPaths(dir_->Path(), "adaptive_pairs2.txt");
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path2 + args +
+                       pairs_path2,
+                   &output),
+            0)
+      << output;
+  EXPECT_EQ(ReadTextFile(pairs_path2), ReadTextFile(pairs_path));
+
+  const std::string pairs_path3 =
+      JoinPaths(dir_->Path(), "adaptive_pairs3.txt");
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path + args +
+                       pairs_path3,
+                   &output),
+            0)
+      << output;
+  EXPECT_EQ(ReadTextFile(pairs_path3), ReadTextFile(pairs_path));
+  EXPECT_NE(output.find("(" + std::to_string(pairs.size()) +
+                        " of the pairs were already matched"),
+            std::string::npos)
+      << output;
+
+  // Interrupted in round 2 (COLMAP crashes on its second run): the
+  // database is untouched; the next run replays round 1 from the working
+  // copy and ends with the same pairs.
+  const std::string database_path4 = CopyOfBase("adaptive4.db");
+  const std::string counter = JoinPaths(dir_->Path(), "adaptive_runs");
+  const std::string fake = JoinPaths(dir_->Path(), "crashing_in_round2");
+  WriteFileAtomically(fake,
+                      "#!/bin/sh\n"
+                      "if [ \"$1\" = matches_importer ]; then\n"
+                      "  n=$(cat " +
+                          counter +
+                          " 2>/dev/null || echo 0)\n"
+                          "  echo $((n + 1)) > " +
+                          counter +
+                          "\n"
+                          "  if [ $n -ge 1 ]; then\n"
+                          "    echo 'F1122 matching exploded'; kill -ABRT $$\n"
+                          "  fi\n"
+                          "fi\n"
+                          "exec " +
+                          RealColmapExe() + " \"$@\"\n");
+  ASSERT_EQ(RunShell("chmod +x " + fake), 0);
+  const std::string before = ReadTextFile(database_path4);
+  const std::string pairs_path4 =
+      JoinPaths(dir_->Path(), "adaptive_pairs4.txt");
+  EXPECT_EQ(Colmap("gcn_matcher --database_path " + database_path4 + args +
+                       pairs_path4,
+                   &output,
+                   "COLMAP_EXE=" + fake),
+            1);
+  EXPECT_NE(output.find("adaptive round 1: "), std::string::npos) << output;
+  EXPECT_EQ(ReadTextFile(database_path4), before);
+  EXPECT_TRUE(ExistsFile(database_path4 + ".gcn-partial"));
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path4 + args +
+                       pairs_path4,
+                   &output),
+            0)
+      << output;
+  EXPECT_NE(output.find("resuming the interrupted matching"), std::string::npos)
+      << output;
+  EXPECT_FALSE(ExistsFile(database_path4 + ".gcn-partial"));
+  EXPECT_EQ(ReadTextFile(pairs_path4), ReadTextFile(pairs_path));
+}
+
 TEST_F(GcnMatcherEndToEnd, MissingColmapLeavesDatabaseUntouched) {
   const std::string database_path = CopyOfBase("no_colmap.db");
   const std::string before = ReadTextFile(database_path);

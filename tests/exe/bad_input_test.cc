@@ -189,6 +189,30 @@ TEST_F(BadInput, MatcherKnnKZero) {
                      {"--GcnMatching.k must be >= 1 (got 0)"});
 }
 
+TEST_F(BadInput, MatcherAdaptiveYieldAboveOne) {
+  ExpectMatcherError(
+      "--GcnMatching.pairing adaptive --GcnMatching.min_pair_yield 2",
+      {"--GcnMatching.min_pair_yield must be in [0, 1] (got 2)"});
+}
+
+TEST_F(BadInput, MatcherGraphMatchRoundSizeZero) {
+  ExpectMatcherError(
+      "--GcnMatching.pairing graphmatch --GcnMatching.round_size 0",
+      {"--GcnMatching.round_size must be -1", "(got 0)"});
+}
+
+TEST_F(BadInput, AdaptiveSimulatorNeedsAGeneratorThatUsesVerification) {
+  ExpectOneLineError(
+      RunColmap("gcn_adaptive_simulator --database_path " +
+                ShellQuote(database_path_) + " --GcnMatching.pairing knn"),
+      {"--GcnMatching.pairing knn", "adaptive or graphmatch"});
+  ExpectOneLineError(RunColmap("gcn_adaptive_simulator --database_path " +
+                               ShellQuote(database_path_) + " --labels_path " +
+                               ShellQuote(Path("none.csv"))),
+                     {"--labels_path", "none.csv", "does not exist"});
+  EXPECT_EQ(ReadTextFile(database_path_), database_before_);
+}
+
 TEST_F(BadInput, MatcherUnknownEmbedding) {
   ExpectMatcherError("--GcnMatching.embedding sift",
                      {"--GcnMatching.embedding must be empty",

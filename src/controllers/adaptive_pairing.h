@@ -1,0 +1,238 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "controllers/gcn_model_pairing.h"
+#include "feature/pair_generator_spec.h"
+#include "feature/pairing.h"
+#include "retrieval/knn_pairing.h"
+#include "util/timer.h"
+#include "util/types.h"
+
+namespace colmap_gcn {
+
+// Pair selection with COLMAP's verification in the loop (docs/adaptive.md):
+// candidates with a prior score (the GCN's, or embedding similarity), matched
+// in rounds; after each round the collection's own cut between accidental and
+// real ("strong") verifications is learned from the inlier counts, the prior
+// is calibrated to P(strong) on the pairs matched so far, and the next round
+// takes the most probable candidates while that probability stays above
+// min_pair_yield.
+struct AdaptivePairingOptions {
+  // Round 1: every image's best candidates by prior score.
+  int initial_per_image = 3;
+
+  // Round 1 also attempts this fraction of its size in lower-ranked
+  // candidates, one drawn (with seed) from each of as many equal score
+  // strata, so that the calibration sees the whole score range.
+  double exploration_fraction = 0.1;
+  int seed = 0;
+
+  // Pairs per later round; -1: the number of images, at least 50.
+  int round_size = -1;
+
+  // Later rounds attempt the candidates whose calibrated probability of a
+  // strong verification is at least this. When none reaches it but the
+  // last round's observed strong fraction did, a probe round takes the
+  // most probable candidates anyway (the calibration only extrapolates
+  // below the scores matched so far); matching stops once no candidate
+  // reaches it and the last round's observed fraction fell below it
+  // (after the connectivity attempts below).
+  double min_pair_yield = 0.5;
+
+  // Hard budget of attempted pairs; 0: none.
+  int max_num_pairs = 0;
+
+  // The strong-verification cut, in inliers: the Otsu split of
+  // log(inliers) over the verified pairs seen so far when that split is
+  // bimodal (between-class share of the variance >= 0.75), its lower class
+  // looks accidental (median <= 30 inliers, twice COLMAP's default
+  // min_num_inliers) and at least 20 pairs verified, clamped to
+  // [min_strong_inliers, max_strong_inliers]; otherwise min_strong_inliers.
+  int min_strong_inliers = 30;
+  int max_strong_inliers = 150;
+
+  // Propagation: candidates are classed by how many strong paths of two
+  // edges they close (common strong neighbours: 0, 1, 2-3, 4-7, >= 8);
+  // once at least this many matched pairs fall in a class, its candidates
+  // get a log-odds offset on the score's calibrated probability, fitted so
+  // that the class's matched pairs are predicted as often strong as they
+  // were; a class with fewer samples gets no offset.
+  int min_propagation_samples = 10;
+
+  // Connectivity: once no candidate reaches min_pair_yield, every image
+  // with candidates but no attempted pair gets its most probable one, and
+  // every image without a strong pair up to this many more attempts.
+  int isolated_retries = 2;
+
+  // Throws OptionError naming the first invalid field.
+  void Check() const;
+};
+
+// A candidate pair and its prior score (higher: more likely to match).
+struct PairCandidate {
+  image_t image_id1 = kInvalidImageId;
+  image_t image_id2 = kInvalidImageId;
+  float score = 0.f;
+};
+
+// One round as logged.
+struct AdaptiveRound {
+  int round = 0;               // 1-based
+  size_t num_pairs = 0;        // attempted in this round
+  double expected_yield = -1;  // mean calibrated P(strong); -1: round 1
+  bool probe = false;          // taken below min_pair_yield to probe
+  bool connectivity = false;   // the connectivity attempts
+  size_t num_verified = 0;     // of this round's pairs
+  size_t num_strong = 0;       // of this round's pairs, at the cut below
+  int strong_cut = 0;          // inliers, learned after this round
+  size_t total_attempted = 0;
+  size_t total_strong = 0;  // all attempted pairs, at the cut above
+  double seconds = 0;       // Next() to Observe(), matching included
+};
+
+// P(strong | score) by isotonic regression (pool-adjacent-violators) on
+// (score, 0/1) samples: a non-decreasing step function, each step shrunk
+// by one pseudo-sample at 1/2 (then made monotone again), linear across
+// the gaps between steps; below the lowest sample, the lowest step.
+// Deterministic.
+class IsotonicCalibration {
+ public:
+  void Fit(std::vector<std::pair<float, int>> samples);
+  double Predict(float score) const;
+  bool Empty() const { return levels_.empty(); }
+  size_t NumSamples() const { return num_samples_; }
+
+ private:
+  std::vector<float> lower_;    // smallest score of each step
+  std::vector<float> upper_;    // largest score of each step
+  std::vector<double> levels_;  // its probability, non-decreasing
+  size_t num_samples_ = 0;
+};
+
+// The collection's strong-verification cut from the inlier counts of its
+// verified pairs (see AdaptivePairingOptions).
+int LearnStrongInlierCut(const std::vector<size_t>& verified_inliers,
+                         const AdaptivePairingOptions& options);
+
+// The sample-calibrate-propagate loop over a fixed candidate list; COLMAP
+// independent (tests and gcn_adaptive_simulator drive it with tables of
+// verification results). Pairs are handed out once each; the next block
+// depends only on the candidates, options and what Observe() got, so a run
+// that is fed the same results repeats exactly.
+class AdaptivePairGenerator : public PairGenerator {
+ public:
+  // candidates: unordered pairs of image_ids (duplicates keep the higher
+  // score); label names the generator in log lines.
+  AdaptivePairGenerator(const AdaptivePairingOptions& options,
+                        const std::vector<image_t>& image_ids,
+                        const std::vector<PairCandidate>& candidates,
+                        const std::string& label = "adaptive");
+
+  void Reset() override;
+  bool HasFinished() const override;
+  std::vector<ImagePair> Next() override;
+  std::vector<float> Scores() const override;
+  bool UsesVerification() const override { return true; }
+  void Observe(const std::vector<PairVerification>& verifications) override;
+
+  const std::vector<AdaptiveRound>& Rounds() const { return rounds_; }
+  int StrongCut() const { return strong_cut_; }
+  size_t NumCandidates() const { return candidates_.size(); }
+  const AdaptivePairingOptions& Options() const { return options_; }
+
+ private:
+  struct Candidate {
+    int row1 = 0;
+    int row2 = 0;
+    float score = 0.f;
+    enum class State : uint8_t {
+      kUntried,
+      kPending,
+      kObserved
+    } state = State::kUntried;
+    bool verified = false;
+    size_t num_inliers = 0;
+  };
+
+  void PrepareNext() const;  // fills next_ (logical constness: a cache)
+  std::vector<int> FirstRound() const;
+  std::vector<int> LaterRound() const;
+  bool IsStrong(const Candidate& candidate) const;
+  double Probability(int c) const;
+  // Strong neighbours the pair's images have in common (the strong paths
+  // of length two it closes), and its support class (kSupportClasses).
+  int CommonStrongNeighbours(int c) const;
+  int SupportClass(int c) const;
+  void Refit();
+
+  const AdaptivePairingOptions options_;
+  const std::string label_;
+  std::vector<image_t> image_ids_;
+  std::unordered_map<image_t, int> rows_;
+  std::vector<Candidate> candidates_;
+  std::unordered_map<uint64_t, int> candidate_index_;  // (row1<<32)|row2
+  std::vector<std::vector<int>> incident_;             // candidates per row
+
+  // Run state.
+  std::vector<int> yielded_;  // candidate indices in yield order
+  std::vector<AdaptiveRound> rounds_;
+  std::vector<std::vector<int>> strong_neighbours_;  // sorted rows
+  int strong_cut_ = 0;
+  IsotonicCalibration calibration_;  // all observed pairs, by score
+  // Log-odds offset per support class (0, 1, 2-3, 4-7, >= 8 common strong
+  // neighbours).
+  std::vector<double> support_offsets_;
+  std::vector<int> retries_;  // connectivity attempts per row
+  Timer round_timer_;
+  mutable bool prepared_ = false;
+  mutable std::vector<int> next_;
+  mutable double next_yield_ = -1;
+  mutable bool next_probe_ = false;
+  mutable bool next_connectivity_ = false;
+};
+
+// --GcnMatching.pairing adaptive: the GCN model's candidates (all k1
+// neighbours of every image with their GCN scores) through
+// AdaptivePairGenerator.
+struct AdaptiveGcnPairingOptions {
+  AdaptiveGcnPairingOptions();
+  // The model's options; k1 defaults to 100 (the paper's test-time k1), not
+  // the model's, since the rounds, not a threshold, choose among them.
+  GcnModelPairingOptions gcn;
+  AdaptivePairingOptions adaptive;
+  void Check() const;
+};
+
+// The candidates of the GCN model (threshold 0: every scored 1-hop pair).
+std::vector<PairCandidate> GcnModelCandidates(
+    const GcnModelPairingOptions& options,
+    const Database& database,
+    std::vector<image_t>* image_ids);
+
+PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptivePairGeneratorSpec();
+
+// --GcnMatching.pairing graphmatch: a GraphMatch-style baseline (Cui et
+// al., 3DV 2017) with no GCN: the k nearest neighbours by embedding
+// similarity, that similarity as the prior, then the same rounds,
+// propagation and stopping rule as adaptive.
+struct GraphMatchPairingOptions {
+  GraphMatchPairingOptions();
+  KnnPairingOptions knn;  // k defaults to 100, adaptive's k1
+  AdaptivePairingOptions adaptive;
+  void Check() const;
+};
+
+// The kNN candidates with their similarities.
+std::vector<PairCandidate> SimilarityCandidates(
+    const KnnPairingOptions& options,
+    const Database& database,
+    std::vector<image_t>* image_ids);
+
+PairGeneratorSpec<GraphMatchPairingOptions> GraphMatchPairGeneratorSpec();
+
+}  // namespace colmap_gcn

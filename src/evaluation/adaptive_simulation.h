@@ -1,0 +1,69 @@
+#pragma once
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "evaluation/labels.h"
+#include "feature/pairing.h"
+#include "scene/database.h"
+
+namespace colmap_gcn {
+
+// The verification of every pair of an exhaustively matched database, to
+// replay pair generators that use verification without running COLMAP:
+// "matching" a pair is looking up its two_view_geometries row (no row: not
+// verified, 0 inliers).
+class VerificationTable {
+ public:
+  explicit VerificationTable(const Database& database);
+
+  PairVerification Lookup(image_t image_id1, image_t image_id2) const;
+  const std::string& Name(image_t image_id) const;
+  const std::vector<DatabaseImage>& Images() const { return images_; }
+
+ private:
+  std::vector<DatabaseImage> images_;
+  std::unordered_map<image_t, size_t> image_index_;
+  std::unordered_map<image_pair_t, TwoViewGeometryInfo> geometries_;
+};
+
+// What a pair set finds, at a strong-verification cut.
+struct PairSetQuality {
+  size_t num_pairs = 0;      // TAM
+  size_t num_verified = 0;   // UM (COLMAP's rule, 15 inliers)
+  size_t num_strong = 0;     // verified with >= strong_cut inliers
+  size_t num_matchable = 0;  // labelled matchable pairs (0: no labels)
+  size_t num_matchable_found = 0;
+  size_t num_cross_scene = 0;  // pairs across "<scene>__" name prefixes
+  size_t num_images_with_strong = 0;
+  double Recall() const {
+    return num_matchable == 0 ? 0.0
+                              : static_cast<double>(num_matchable_found) /
+                                    static_cast<double>(num_matchable);
+  }
+};
+
+// labels may be null (recall then 0, num_matchable 0).
+PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,
+                               const VerificationTable& table,
+                               const PairLabels* labels,
+                               int strong_cut);
+
+// One round of a replayed run: the round's block and the set so far.
+struct SimulatedRound {
+  size_t num_pairs = 0;
+  PairSetQuality total;
+};
+
+// Runs `generator` (Reset, then Next / Observe until HasFinished) against
+// the table; the attempted pairs in yield order go to *pairs. strong_cut
+// is the cut the per-round totals are evaluated at.
+std::vector<SimulatedRound> SimulatePairGenerator(
+    PairGenerator* generator,
+    const VerificationTable& table,
+    const PairLabels* labels,
+    int strong_cut,
+    std::vector<ImagePair>* pairs);
+
+}  // namespace colmap_gcn

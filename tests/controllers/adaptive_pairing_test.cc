@@ -1,0 +1,416 @@
+#include "controllers/adaptive_pairing.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "scene/database.h"
+#include "test_utils.h"
+#include "util/logging.h"
+
+namespace colmap_gcn {
+namespace {
+
+// A ring of images: neighbours up to ring distance 3 overlap (strong
+// verifications, hundreds of inliers), farther candidates verify by
+// accident (20 inliers) or not at all. Scores fall with ring distance,
+// with a deterministic wobble that reorders pairs of one distance only.
+struct RingScene {
+  explicit RingScene(int num_images, int num_neighbours = 6) {
+    for (int i = 0; i < num_images; ++i) image_ids.push_back(i + 1);
+    for (int i = 0; i < num_images; ++i) {
+      for (int d = 1; d <= num_neighbours; ++d) {
+        const int j = (i + d) % num_images;
+        const float wobble = 0.02f * static_cast<float>((i * 7 + d * 3) % 5);
+        candidates.push_back({image_ids[i],
+                              image_ids[j],
+                              1.0f / static_cast<float>(d) - wobble});
+      }
+    }
+  }
+
+  int Distance(image_t a, image_t b) const {
+    const int n = static_cast<int>(image_ids.size());
+    const int d = std::abs(static_cast<int>(a) - static_cast<int>(b));
+    return std::min(d, n - d);
+  }
+  bool IsStrongPair(image_t a, image_t b) const { return Distance(a, b) <= 3; }
+
+  PairVerification Verify(const ImagePair& pair) const {
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    const int d = Distance(pair.first, pair.second);
+    if (d <= 3) {
+      verification.config = 2;
+      verification.num_inliers = 900 / d;
+    } else if ((pair.first + pair.second) % 2 == 0) {
+      verification.config = 2;
+      verification.num_inliers = 18 + d;
+    }
+    return verification;
+  }
+
+  std::vector<image_t> image_ids;
+  std::vector<PairCandidate> candidates;
+};
+
+// Runs the generator to the end; returns its blocks.
+std::vector<std::vector<ImagePair>> RunToTheEnd(
+    AdaptivePairGenerator* generator,
+    const std::function<PairVerification(const ImagePair&)>& verify) {
+  std::vector<std::vector<ImagePair>> blocks;
+  generator->Reset();
+  while (!generator->HasFinished()) {
+    blocks.push_back(generator->Next());
+    std::vector<PairVerification> results;
+    for (const ImagePair& pair : blocks.back()) results.push_back(verify(pair));
+    generator->Observe(results);
+    if (blocks.size() > 1000) break;  // a loop that never ends fails below
+  }
+  return blocks;
+}
+
+std::vector<ImagePair> Flatten(
+    const std::vector<std::vector<ImagePair>>& blocks) {
+  std::vector<ImagePair> pairs;
+  for (const auto& block : blocks) {
+    pairs.insert(pairs.end(), block.begin(), block.end());
+  }
+  return pairs;
+}
+
+TEST(LearnStrongInlierCut, SplitsABimodalSampleBetweenItsModes) {
+  AdaptivePairingOptions options;
+  std::vector<size_t> inliers;
+  // Accidental verifications 15-35, real ones 176-3152 (log-spread).
+  for (int i = 0; i < 60; ++i) inliers.push_back(15 + (i * 7) % 21);
+  for (int i = 0; i < 40; ++i) {
+    inliers.push_back(
+        static_cast<size_t>(176 * std::pow(3152.0 / 176, i / 39.0)));
+  }
+  const int cut = LearnStrongInlierCut(inliers, options);
+  EXPECT_GT(cut, 35);
+  EXPECT_LE(cut, 150);  // max_strong_inliers
+  options.max_strong_inliers = 1000;
+  const int free_cut = LearnStrongInlierCut(inliers, options);
+  EXPECT_GT(free_cut, 35);
+  EXPECT_LT(free_cut, 176);
+}
+
+TEST(LearnStrongInlierCut, FloorWithoutTwoModesOrEnoughPairs) {
+  AdaptivePairingOptions options;
+  options.min_strong_inliers = 40;
+  // One log-normal-like mode of real pairs: no cut inside it.
+  std::vector<size_t> real;
+  for (int i = 0; i < 200; ++i) {
+    const double z = std::sin(i * 12.9898) * 43758.5453;
+    const double u = z - std::floor(z);
+    const double v = std::fmod(i * 0.61803398875, 1.0);
+    real.push_back(static_cast<size_t>(
+        std::exp(6.0 + 0.6 * (u + v + std::fmod(i * 0.41421356, 1.0) - 1.5))));
+  }
+  EXPECT_EQ(LearnStrongInlierCut(real, options), 40);
+  EXPECT_EQ(LearnStrongInlierCut({20, 20, 500, 600}, options), 40);
+  // Two modes of real pairs (60-90 and 400-900 inliers): no accidents.
+  std::vector<size_t> weak_and_strong;
+  for (int i = 0; i < 40; ++i) {
+    weak_and_strong.push_back(60 + (i * 7) % 31);
+    weak_and_strong.push_back(400 + (i * 13) % 501);
+  }
+  EXPECT_EQ(LearnStrongInlierCut(weak_and_strong, options), 40);
+  EXPECT_EQ(LearnStrongInlierCut({}, options), 40);
+}
+
+TEST(IsotonicCalibration, MonotoneShrunkAndDeterministic) {
+  std::vector<std::pair<float, int>> samples;
+  for (int i = 0; i < 100; ++i) {
+    const float score = static_cast<float>(i) / 100.f;
+    // Mostly positive above 0.5, with violations on both sides.
+    const int label = (score > 0.5f) != (i % 9 == 0) ? 1 : 0;
+    samples.emplace_back(score, label);
+  }
+  IsotonicCalibration a;
+  a.Fit(samples);
+  std::vector<std::pair<float, int>> shuffled(samples.rbegin(), samples.rend());
+  std::rotate(shuffled.begin(), shuffled.begin() + 37, shuffled.end());
+  IsotonicCalibration b;
+  b.Fit(shuffled);
+  double previous = -1;
+  for (int i = -10; i <= 110; ++i) {
+    const float score = static_cast<float>(i) / 100.f;
+    const double p = a.Predict(score);
+    EXPECT_GE(p, previous) << score;
+    EXPECT_GE(p, 0.0);
+    EXPECT_LE(p, 1.0);
+    EXPECT_EQ(p, b.Predict(score)) << score;
+    previous = p;
+  }
+  EXPECT_LT(a.Predict(0.1f), 0.25);
+  EXPECT_GT(a.Predict(0.9f), 0.75);
+  // Shrinkage: two positives alone do not make certainty.
+  IsotonicCalibration two;
+  two.Fit({{0.5f, 1}, {0.6f, 1}});
+  EXPECT_LE(two.Predict(0.6f), 1.0);
+  IsotonicCalibration empty;
+  EXPECT_EQ(empty.Predict(0.5f), 0.0);
+}
+
+TEST(AdaptivePairGenerator, SimulatedRunFindsTheStrongPairsAndStops) {
+  const RingScene scene(40);
+  AdaptivePairingOptions options;
+  options.initial_per_image = 1;
+  options.round_size = 20;
+  AdaptivePairGenerator generator(options, scene.image_ids, scene.candidates);
+  EXPECT_TRUE(generator.UsesVerification());
+  const auto blocks = RunToTheEnd(
+      &generator, [&](const ImagePair& pair) { return scene.Verify(pair); });
+  ASSERT_TRUE(generator.HasFinished());
+  EXPECT_GE(blocks.size(), 2u);
+  const std::vector<ImagePair> pairs = Flatten(blocks);
+  std::set<image_pair_t> unique;
+  size_t strong = 0;
+  for (const ImagePair& pair : pairs) {
+    EXPECT_TRUE(
+        unique.insert(ImagePairToPairId(pair.first, pair.second)).second);
+    strong += scene.IsStrongPair(pair.first, pair.second) ? 1 : 0;
+  }
+  // 40 images x 3 strong neighbours each side / 2 = 120 strong pairs of
+  // 240 candidates: all found, and far from all candidates attempted.
+  EXPECT_EQ(strong, 120u);
+  EXPECT_LT(pairs.size(), 200u);
+  EXPECT_GT(generator.StrongCut(), 25);  // above the accidental ones
+  ASSERT_EQ(generator.Rounds().size(), blocks.size());
+  for (size_t r = 1; r < blocks.size(); ++r) {
+    EXPECT_EQ(generator.Rounds()[r].num_pairs, blocks[r].size());
+  }
+  EXPECT_EQ(generator.Rounds().back().total_attempted, pairs.size());
+  EXPECT_EQ(generator.Scores().size(), pairs.size());
+}
+
+TEST(AdaptivePairGenerator, LogsEveryRound) {
+  struct Collect : LogSink {
+    void Send(LogLevel, const std::string& message) override {
+      if (message.find("adaptive round ") != std::string::npos) {
+        lines.push_back(message);
+      }
+    }
+    std::vector<std::string> lines;
+  } sink;
+  const RingScene scene(20);
+  AdaptivePairGenerator generator(
+      AdaptivePairingOptions(), scene.image_ids, scene.candidates);
+  std::vector<std::vector<ImagePair>> blocks;
+  {
+    const ScopedLogSink scoped(&sink);
+    blocks = RunToTheEnd(
+        &generator, [&](const ImagePair& pair) { return scene.Verify(pair); });
+  }
+  ASSERT_EQ(sink.lines.size(), blocks.size());
+  EXPECT_NE(sink.lines[0].find("adaptive round 1: "), std::string::npos);
+  EXPECT_NE(sink.lines[0].find("calibrated yield n/a"), std::string::npos);
+  EXPECT_NE(sink.lines[0].find(" strong (cut "), std::string::npos);
+}
+
+// Repeated structure: two look-alike groups of 12 images; one wrong pair
+// across them verifies strongly. Blind propagation would then try every
+// cross pair that closes a path through it; the calibrated one keeps to the
+// low score the GCN gives cross pairs, which this collection shows to fail.
+TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
+  std::vector<image_t> image_ids;
+  for (image_t id = 1; id <= 24; ++id) image_ids.push_back(id);
+  const auto group = [](image_t id) { return id <= 12 ? 0 : 1; };
+  std::vector<PairCandidate> candidates;
+  for (image_t a = 1; a <= 24; ++a) {
+    for (image_t b = a + 1; b <= 24; ++b) {
+      const bool same = group(a) == group(b);
+      const float wobble = 0.01f * static_cast<float>((a * 5 + b * 3) % 7);
+      // The repeated structure fools the prior on 1-13 too.
+      const float score = (a == 1 && b == 13) ? 0.95f
+                          : same              ? 0.8f + wobble
+                                              : 0.1f + wobble;
+      candidates.push_back({a, b, score});
+    }
+  }
+  const auto verify = [&](const ImagePair& pair) {
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    const bool wrong_but_strong = std::min(pair.first, pair.second) == 1 &&
+                                  std::max(pair.first, pair.second) == 13;
+    if (group(pair.first) == group(pair.second) || wrong_but_strong) {
+      verification.config = 2;
+      verification.num_inliers = 400;
+    } else if ((pair.first + pair.second) % 3 == 0) {
+      verification.config = 2;
+      verification.num_inliers = 20;  // accidental
+    }
+    return verification;
+  };
+  AdaptivePairingOptions options;
+  options.isolated_retries = 0;
+  AdaptivePairGenerator generator(options, image_ids, candidates);
+  const auto blocks = RunToTheEnd(&generator, verify);
+  size_t within = 0;
+  size_t across_after_first_round = 0;
+  size_t through_wrong_pair = 0;  // cross pairs of image 1 or 13
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    for (const ImagePair& pair : blocks[b]) {
+      if (group(pair.first) == group(pair.second)) {
+        ++within;
+      } else if (b > 0) {
+        ++across_after_first_round;
+        const bool closes = pair.first == 1 || pair.second == 1 ||
+                            pair.first == 13 || pair.second == 13;
+        through_wrong_pair += closes ? 1 : 0;
+      }
+    }
+  }
+  // 1-13 is attempted in round 1 (both images' best) and verifies strongly.
+  ASSERT_FALSE(blocks.empty());
+  EXPECT_NE(std::find(blocks[0].begin(), blocks[0].end(), ImagePair(1, 13)),
+            blocks[0].end());
+  EXPECT_EQ(within, 2u * 66u);  // every pair within the groups
+  // Blind propagation would try all 22 cross pairs that close a path
+  // through 1-13 (1-y, x-13). Here cross pairs are tried only by the one
+  // probe round (12 pairs) that ends the run, none verifying strongly.
+  const std::vector<AdaptiveRound>& rounds = generator.Rounds();
+  ASSERT_FALSE(rounds.empty());
+  EXPECT_TRUE(rounds.back().probe);
+  EXPECT_EQ(rounds.back().num_strong, 0u);
+  EXPECT_EQ(across_after_first_round, rounds.back().num_pairs);
+  EXPECT_LE(across_after_first_round, 12u);
+  EXPECT_LT(through_wrong_pair, 6u);
+}
+
+TEST(AdaptivePairGenerator, EveryImageGetsAPairAndIsolatedOnesRetries) {
+  RingScene scene(20);
+  // Image 21 has candidates but none of them verifies, all low-scored.
+  scene.image_ids.push_back(21);
+  for (image_t other = 1; other <= 6; ++other) {
+    scene.candidates.push_back({21, other, 0.01f * static_cast<float>(other)});
+  }
+  AdaptivePairingOptions options;
+  options.initial_per_image = 1;
+  options.exploration_fraction = 0;
+  options.isolated_retries = 2;
+  AdaptivePairGenerator generator(options, scene.image_ids, scene.candidates);
+  const auto pairs =
+      Flatten(RunToTheEnd(&generator, [&](const ImagePair& pair) {
+        if (pair.first != 21 && pair.second != 21) return scene.Verify(pair);
+        PairVerification failed;
+        failed.image_id1 = pair.first;
+        failed.image_id2 = pair.second;
+        return failed;
+      }));
+  std::map<image_t, int> attempts;
+  for (const ImagePair& pair : pairs) {
+    ++attempts[pair.first];
+    ++attempts[pair.second];
+  }
+  for (const image_t id : scene.image_ids) EXPECT_GE(attempts[id], 1) << id;
+  // Its best candidate in round 1, then two retries.
+  EXPECT_EQ(attempts[21], 3);
+
+  // A budget is hard, and round 1 cut by it keeps each image's best first.
+  options.max_num_pairs = 21;
+  AdaptivePairGenerator budget(options, scene.image_ids, scene.candidates);
+  const auto budget_pairs = Flatten(RunToTheEnd(
+      &budget, [&](const ImagePair& pair) { return scene.Verify(pair); }));
+  EXPECT_EQ(budget_pairs.size(), 21u);
+  std::set<image_t> covered;
+  for (const ImagePair& pair : budget_pairs) {
+    covered.insert(pair.first);
+    covered.insert(pair.second);
+  }
+  EXPECT_EQ(covered.size(), scene.image_ids.size());
+}
+
+TEST(AdaptivePairGenerator, SameObservationsGiveTheSameBlocks) {
+  const RingScene scene(30);
+  AdaptivePairingOptions options;
+  options.round_size = 15;
+  const auto verify = [&](const ImagePair& pair) { return scene.Verify(pair); };
+  AdaptivePairGenerator first(options, scene.image_ids, scene.candidates);
+  const auto blocks = RunToTheEnd(&first, verify);
+  // A resumed run: a new generator fed the same results, and the same one
+  // after Reset().
+  AdaptivePairGenerator second(options, scene.image_ids, scene.candidates);
+  EXPECT_EQ(RunToTheEnd(&second, verify), blocks);
+  EXPECT_EQ(RunToTheEnd(&first, verify), blocks);
+  // Results fed in another order within each block change nothing.
+  AdaptivePairGenerator third(options, scene.image_ids, scene.candidates);
+  std::vector<std::vector<ImagePair>> reordered;
+  while (!third.HasFinished()) {
+    reordered.push_back(third.Next());
+    std::vector<PairVerification> results;
+    for (auto it = reordered.back().rbegin(); it != reordered.back().rend();
+         ++it) {
+      results.push_back(verify(*it));
+    }
+    third.Observe(results);
+  }
+  EXPECT_EQ(reordered, blocks);
+  // Another seed explores other pairs.
+  options.seed = 5;
+  AdaptivePairGenerator seeded(options, scene.image_ids, scene.candidates);
+  seeded.Reset();
+  EXPECT_NE(seeded.Next(), blocks.front());
+}
+
+TEST(AdaptivePairGenerator, WithoutResultsOnlyTheFirstRound) {
+  const RingScene scene(12);
+  AdaptivePairingOptions options;
+  options.initial_per_image = 2;
+  options.exploration_fraction = 0;
+  AdaptivePairGenerator generator(options, scene.image_ids, scene.candidates);
+  const std::vector<ImagePair> pairs = generator.AllPairs();
+  EXPECT_GE(pairs.size(), 12u);
+  EXPECT_LE(pairs.size(), 24u);
+  EXPECT_TRUE(generator.HasFinished());
+}
+
+TEST(AdaptivePairGenerator, BadInputIsAnError) {
+  const RingScene scene(5);
+  std::vector<PairCandidate> unknown = scene.candidates;
+  unknown.push_back({1, 99, 0.5f});
+  test::ExpectErrorContaining(
+      [&] {
+        AdaptivePairGenerator(
+            AdaptivePairingOptions(), scene.image_ids, unknown);
+      },
+      "unknown image id");
+}
+
+TEST(AdaptivePairingOptions, CheckNamesTheField) {
+  const auto expect =
+      [](const std::function<void(AdaptivePairingOptions*)>& set,
+         const std::string& field) {
+        AdaptivePairingOptions options;
+        set(&options);
+        test::ExpectErrorContaining([&] { options.Check(); }, field);
+      };
+  expect([](AdaptivePairingOptions* o) { o->min_pair_yield = 1.5; },
+         "min_pair_yield");
+  expect([](AdaptivePairingOptions* o) { o->initial_per_image = 0; },
+         "initial_per_image");
+  expect([](AdaptivePairingOptions* o) { o->round_size = 0; }, "round_size");
+  expect([](AdaptivePairingOptions* o) { o->max_num_pairs = -1; },
+         "max_num_pairs");
+  expect([](AdaptivePairingOptions* o) { o->max_strong_inliers = 10; },
+         "max_strong_inliers");
+  expect([](AdaptivePairingOptions* o) { o->exploration_fraction = -0.1; },
+         "exploration_fraction");
+  expect([](AdaptivePairingOptions* o) { o->isolated_retries = -1; },
+         "isolated_retries");
+  EXPECT_NO_THROW(AdaptivePairingOptions().Check());
+}
+
+}  // namespace
+}  // namespace colmap_gcn
