@@ -22,6 +22,20 @@
 namespace colmap_gcn {
 namespace {
 
+// The COLMAP we run writes its own (3.8) layout; rows it wrote into another
+// layout would not be what that layout's readers expect.
+void CheckWritableByColmap(const ColmapRunner& colmap,
+                           const Database& database) {
+  if (database.Schema() != DatabaseSchema::kColmap38) {
+    ThrowError(database.Path(),
+               " has the ",
+               DatabaseSchemaName(database.Schema()),
+               " layout; COLMAP ",
+               colmap.Version(),
+               " must not write into it");
+  }
+}
+
 std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometriesById(
     const Database& database) {
   std::unordered_map<image_pair_t, TwoViewGeometryInfo> by_id;
@@ -162,14 +176,7 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   std::vector<ImagePair> unmatched_pairs;
   {
     const Database database(database_path);
-    if (database.Schema() != DatabaseSchema::kColmap38) {
-      ThrowError(database_path,
-                 " has the ",
-                 DatabaseSchemaName(database.Schema()),
-                 " layout; COLMAP ",
-                 colmap.Version(),
-                 " must not write into it");
-    }
+    CheckWritableByColmap(colmap, database);
     images = database.ReadAllImages();
     const auto geometries = GeometriesById(database);
     for (size_t i = 0; i < pairs.size(); ++i) {
@@ -247,14 +254,7 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
   std::vector<DatabaseImage> images;
   {
     const Database database(database_path);
-    if (database.Schema() != DatabaseSchema::kColmap38) {
-      ThrowError(database_path,
-                 " has the ",
-                 DatabaseSchemaName(database.Schema()),
-                 " layout; COLMAP ",
-                 colmap.Version(),
-                 " must not write into it");
-    }
+    CheckWritableByColmap(colmap, database);
     images = database.ReadAllImages();
   }
 
