@@ -6,9 +6,6 @@
 #include <cstring>
 #include <set>
 
-#include <Eigen/Geometry>
-#include <Eigen/LU>
-
 #include "scene/camera_models.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -45,14 +42,6 @@ class Statement {
 
   void BindInt64(const int index, const int64_t value) {
     Check(sqlite3_bind_int64(stmt_, index, value), "binding");
-  }
-  void BindText(const int index, const std::string& value) {
-    Check(sqlite3_bind_text(stmt_,
-                            index,
-                            value.data(),
-                            static_cast<int>(value.size()),
-                            SQLITE_TRANSIENT),
-          "binding");
   }
   void BindBlob(const int index, const void* data, const size_t num_bytes) {
     Check(
@@ -176,68 +165,6 @@ MatrixType ReadMatrixBlob(const Statement& stmt,
     std::memcpy(matrix.data(), data, expected_bytes);
   }
   return matrix;
-}
-
-// Reads a fixed-size float64 blob (F, E, H as 9 row-major values, qvec,
-// tvec). A NULL/empty blob keeps the default; other sizes are corruption.
-template <int N>
-void ReadDoubleBlob(const Statement& stmt,
-                    const int col,
-                    const char* name,
-                    const int64_t pair_id,
-                    double* values) {
-  size_t num_bytes = 0;
-  const void* data = stmt.Blob(col, &num_bytes);
-  if (num_bytes == 0) return;
-  if (num_bytes != N * sizeof(double)) {
-    ThrowError("database ",
-               stmt.DbPath(),
-               ": ",
-               name,
-               " blob of two_view_geometries pair_id ",
-               pair_id,
-               " has ",
-               num_bytes,
-               " bytes, expected ",
-               N * sizeof(double));
-  }
-  std::memcpy(values, data, num_bytes);
-}
-
-// COLMAP writes F, E, H as row-major 3x3 (it transposes Eigen's column-major
-// storage before writing).
-Eigen::Matrix3d ReadRowMajorMatrix3d(const Statement& stmt,
-                                     const int col,
-                                     const char* name,
-                                     const int64_t pair_id) {
-  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> matrix =
-      Eigen::Matrix<double, 3, 3, Eigen::RowMajor>::Zero();
-  ReadDoubleBlob<9>(stmt, col, name, pair_id, matrix.data());
-  return matrix;
-}
-
-Eigen::Matrix3d QuaternionToRotationMatrix(const Eigen::Vector4d& qvec) {
-  const Eigen::Quaterniond quat(qvec(0), qvec(1), qvec(2), qvec(3));
-  return quat.normalized().toRotationMatrix();
-}
-
-// Expresses a two-view geometry estimated for (image1, image2) as the one for
-// (image2, image1), as COLMAP's TwoViewGeometry::Invert does.
-void InvertTwoViewGeometry(TwoViewGeometry* geometry) {
-  geometry->F.transposeInPlace();
-  geometry->E.transposeInPlace();
-  // An unset (zero) homography has no inverse; keep it zero rather than
-  // filling it with infinities.
-  if (geometry->H.determinant() != 0.0) {
-    geometry->H = geometry->H.inverse().eval();
-  }
-  if (geometry->qvec.norm() > 0.0) {
-    const Eigen::Vector4d q = geometry->qvec.normalized();
-    const Eigen::Vector4d q_inv(q(0), -q(1), -q(2), -q(3));
-    geometry->tvec = -QuaternionToRotationMatrix(q_inv) * geometry->tvec;
-    geometry->qvec = q_inv;
-  }
-  geometry->inlier_matches.col(0).swap(geometry->inlier_matches.col(1));
 }
 
 DatabaseImage ReadImageRow(const Statement& stmt) {
@@ -404,61 +331,12 @@ void Database::RequireWritable() const {
   }
 }
 
-size_t Database::NumCameras() const {
-  return QueryCount(db_, path_, "SELECT COUNT(*) FROM cameras");
-}
-
 size_t Database::NumImages() const {
   return QueryCount(db_, path_, "SELECT COUNT(*) FROM images");
 }
 
-size_t Database::NumKeypoints() const {
-  return QueryCount(db_, path_, "SELECT SUM(rows) FROM keypoints");
-}
-
 size_t Database::NumDescriptors() const {
   return QueryCount(db_, path_, "SELECT SUM(rows) FROM descriptors");
-}
-
-size_t Database::NumMatchedPairs() const {
-  return QueryCount(db_, path_, "SELECT COUNT(*) FROM matches");
-}
-
-size_t Database::NumTwoViewGeometries() const {
-  return QueryCount(db_, path_, "SELECT COUNT(*) FROM two_view_geometries");
-}
-
-std::vector<DatabaseCamera> Database::ReadAllCameras() const {
-  Statement stmt(db_,
-                 path_,
-                 "SELECT camera_id, model, width, height, params, "
-                 "prior_focal_length FROM cameras ORDER BY camera_id");
-  std::vector<DatabaseCamera> cameras;
-  while (stmt.Step()) {
-    DatabaseCamera camera;
-    camera.camera_id = static_cast<camera_t>(stmt.Int64(0));
-    camera.model_id = static_cast<int>(stmt.Int64(1));
-    camera.width = static_cast<uint64_t>(stmt.Int64(2));
-    camera.height = static_cast<uint64_t>(stmt.Int64(3));
-    size_t num_bytes = 0;
-    const void* data = stmt.Blob(4, &num_bytes);
-    if (num_bytes % sizeof(double) != 0) {
-      ThrowError("database ",
-                 path_,
-                 ": params blob of camera ",
-                 camera.camera_id,
-                 " has ",
-                 num_bytes,
-                 " bytes, not a multiple of 8");
-    }
-    camera.params.resize(num_bytes / sizeof(double));
-    if (num_bytes > 0) {
-      std::memcpy(camera.params.data(), data, num_bytes);
-    }
-    camera.has_prior_focal_length = stmt.Int64(5) != 0;
-    cameras.push_back(std::move(camera));
-  }
-  return cameras;
 }
 
 std::vector<DatabaseImage> Database::ReadAllImages() const {
@@ -471,45 +349,6 @@ std::vector<DatabaseImage> Database::ReadAllImages() const {
     images.push_back(ReadImageRow(stmt));
   }
   return images;
-}
-
-bool Database::ExistsImageWithName(const std::string& name) const {
-  Statement stmt(db_, path_, "SELECT 1 FROM images WHERE name = ?");
-  stmt.BindText(1, name);
-  return stmt.Step();
-}
-
-DatabaseImage Database::ReadImageWithName(const std::string& name) const {
-  Statement stmt(db_,
-                 path_,
-                 "SELECT image_id, name, camera_id FROM images WHERE name = ?");
-  stmt.BindText(1, name);
-  if (!stmt.Step()) {
-    ThrowError("database ", path_, " has no image named '", name, "'");
-  }
-  return ReadImageRow(stmt);
-}
-
-FeatureKeypoints Database::ReadKeypoints(const image_t image_id) const {
-  Statement stmt(
-      db_, path_, "SELECT rows, cols, data FROM keypoints WHERE image_id = ?");
-  stmt.BindInt64(1, image_id);
-  if (!stmt.Step()) {
-    return FeatureKeypoints(0, 2);
-  }
-  FeatureKeypoints keypoints =
-      ReadMatrixBlob<FeatureKeypoints>(stmt, 0, "keypoints", image_id);
-  const Eigen::Index cols = keypoints.cols();
-  if (keypoints.rows() > 0 && cols != 2 && cols != 4 && cols != 6) {
-    ThrowError("database ",
-               path_,
-               ": keypoints of image ",
-               image_id,
-               " have ",
-               cols,
-               " columns, expected 2, 4 or 6");
-  }
-  return keypoints;
 }
 
 FeatureDescriptors Database::ReadDescriptors(const image_t image_id) const {
@@ -529,46 +368,6 @@ size_t Database::NumDescriptorsForImage(const image_t image_id) const {
   return stmt.Step() ? static_cast<size_t>(stmt.Int64(0)) : 0;
 }
 
-size_t Database::NumKeypointsForImage(const image_t image_id) const {
-  Statement stmt(db_, path_, "SELECT rows FROM keypoints WHERE image_id = ?");
-  stmt.BindInt64(1, image_id);
-  return stmt.Step() ? static_cast<size_t>(stmt.Int64(0)) : 0;
-}
-
-FeatureMatches Database::ReadMatches(const image_t image_id1,
-                                     const image_t image_id2) const {
-  const image_pair_t pair_id = ImagePairToPairId(image_id1, image_id2);
-  Statement stmt(
-      db_, path_, "SELECT rows, cols, data FROM matches WHERE pair_id = ?");
-  stmt.BindInt64(1, static_cast<int64_t>(pair_id));
-  if (!stmt.Step()) {
-    return FeatureMatches(0, 2);
-  }
-  FeatureMatches matches = ReadMatrixBlob<FeatureMatches>(
-      stmt, 0, "matches", static_cast<int64_t>(pair_id));
-  if (SwapImagePair(image_id1, image_id2)) {
-    matches.col(0).swap(matches.col(1));
-  }
-  return matches;
-}
-
-std::vector<image_pair_t> Database::ReadMatchedPairIds() const {
-  Statement stmt(db_, path_, "SELECT pair_id FROM matches ORDER BY pair_id");
-  std::vector<image_pair_t> pair_ids;
-  while (stmt.Step()) {
-    pair_ids.push_back(static_cast<image_pair_t>(stmt.Int64(0)));
-  }
-  return pair_ids;
-}
-
-bool Database::ExistsMatches(const image_t image_id1,
-                             const image_t image_id2) const {
-  Statement stmt(db_, path_, "SELECT 1 FROM matches WHERE pair_id = ?");
-  stmt.BindInt64(1,
-                 static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
-  return stmt.Step();
-}
-
 std::vector<TwoViewGeometryInfo> Database::ReadTwoViewGeometryInfos() const {
   // Only the small columns: the blobs would dominate the cost on large
   // databases and callers just need the pair graph.
@@ -585,43 +384,6 @@ std::vector<TwoViewGeometryInfo> Database::ReadTwoViewGeometryInfos() const {
     infos.push_back(info);
   }
   return infos;
-}
-
-TwoViewGeometry Database::ReadTwoViewGeometry(const image_t image_id1,
-                                              const image_t image_id2) const {
-  const image_pair_t pair_id = ImagePairToPairId(image_id1, image_id2);
-  const int64_t key = static_cast<int64_t>(pair_id);
-  Statement stmt(db_,
-                 path_,
-                 "SELECT rows, cols, data, config, F, E, H, qvec, tvec "
-                 "FROM two_view_geometries WHERE pair_id = ?");
-  stmt.BindInt64(1, key);
-  TwoViewGeometry geometry;
-  if (!stmt.Step()) {
-    geometry.inlier_matches = FeatureMatches(0, 2);
-    return geometry;
-  }
-  geometry.inlier_matches =
-      ReadMatrixBlob<FeatureMatches>(stmt, 0, "two_view_geometries", key);
-  geometry.config = static_cast<int>(stmt.Int64(3));
-  geometry.F = ReadRowMajorMatrix3d(stmt, 4, "F", key);
-  geometry.E = ReadRowMajorMatrix3d(stmt, 5, "E", key);
-  geometry.H = ReadRowMajorMatrix3d(stmt, 6, "H", key);
-  ReadDoubleBlob<4>(stmt, 7, "qvec", key, geometry.qvec.data());
-  ReadDoubleBlob<3>(stmt, 8, "tvec", key, geometry.tvec.data());
-  if (SwapImagePair(image_id1, image_id2)) {
-    InvertTwoViewGeometry(&geometry);
-  }
-  return geometry;
-}
-
-bool Database::ExistsTwoViewGeometry(const image_t image_id1,
-                                     const image_t image_id2) const {
-  Statement stmt(
-      db_, path_, "SELECT 1 FROM two_view_geometries WHERE pair_id = ?");
-  stmt.BindInt64(1,
-                 static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
-  return stmt.Step();
 }
 
 void Database::UpdateCamera(const DatabaseCamera& camera) {

@@ -21,12 +21,8 @@ ImagePair PairIdToImagePair(image_pair_t pair_id);
 // stores matches with column 0 indexing the smaller image id.
 bool SwapImagePair(image_t image_id1, image_t image_id2);
 
-typedef Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
-    FeatureKeypoints;  // rows x {2,4,6} columns, x y [a11 a12 a21 a22]
 typedef Eigen::Matrix<uint8_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
     FeatureDescriptors;  // rows x 128 (SIFT)
-typedef Eigen::Matrix<uint32_t, Eigen::Dynamic, 2, Eigen::RowMajor>
-    FeatureMatches;  // point2D_idx in image_id1, in image_id2
 
 // Two-view geometry configurations (estimators/two_view_geometry.h).
 enum class TwoViewGeometryConfig : int {
@@ -73,16 +69,6 @@ struct TwoViewGeometryInfo {
   size_t num_inliers = 0;
 };
 
-struct TwoViewGeometry {
-  int config = 0;
-  FeatureMatches inlier_matches;  // oriented as requested (image_id1 first)
-  Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
-  Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
-  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  Eigen::Vector4d qvec = Eigen::Vector4d(1, 0, 0, 0);  // w x y z
-  Eigen::Vector3d tvec = Eigen::Vector3d::Zero();
-};
-
 // The database layouts we recognise.
 enum class DatabaseSchema {
   kColmap38,      // COLMAP <= 3.8: images carry prior_q*/prior_t* columns
@@ -117,40 +103,25 @@ class Database {
   const std::string& Path() const { return path_; }
   DatabaseSchema Schema() const { return schema_; }
 
-  size_t NumCameras() const;
   size_t NumImages() const;
-  size_t NumKeypoints() const;          // summed over images
-  size_t NumDescriptors() const;        // summed over images
-  size_t NumMatchedPairs() const;       // rows in matches
-  size_t NumTwoViewGeometries() const;  // rows in two_view_geometries
+  size_t NumDescriptors() const;  // summed over images
 
-  std::vector<DatabaseCamera> ReadAllCameras() const;
   std::vector<DatabaseImage> ReadAllImages() const;  // ordered by image_id
-  bool ExistsImageWithName(const std::string& name) const;
-  DatabaseImage ReadImageWithName(const std::string& name) const;  // throws
 
-  FeatureKeypoints ReadKeypoints(image_t image_id) const;
   FeatureDescriptors ReadDescriptors(image_t image_id) const;
   size_t NumDescriptorsForImage(image_t image_id) const;
-  size_t NumKeypointsForImage(image_t image_id) const;
-
-  // Matches oriented so that column 0 indexes image_id1.
-  FeatureMatches ReadMatches(image_t image_id1, image_t image_id2) const;
-  std::vector<image_pair_t> ReadMatchedPairIds() const;
-  bool ExistsMatches(image_t image_id1, image_t image_id2) const;
 
   // Only pair_id, config and rows (no blobs), ordered by pair_id.
   std::vector<TwoViewGeometryInfo> ReadTwoViewGeometryInfos() const;
-  // Oriented like ReadMatches; for image_id1 > image_id2 the stored geometry
-  // is inverted as COLMAP does (F and E transposed, H inverted, inverse
-  // relative pose). F/E/H are stored row-major.
-  TwoViewGeometry ReadTwoViewGeometry(image_t image_id1,
-                                      image_t image_id2) const;
-  bool ExistsTwoViewGeometry(image_t image_id1, image_t image_id2) const;
 
   // Writing (requires kReadWrite). Used to set ground-truth intrinsics before
   // point_triangulator.
   void UpdateCamera(const DatabaseCamera& camera);
+
+ protected:
+  // For test readers (tests/scene/database_inspector.h) that need tables the
+  // library itself never reads; owned by this object.
+  sqlite3* Handle() const { return db_; }
 
  private:
   void DetectSchema();

@@ -10,6 +10,7 @@
 #include "scene/colmap_scene_fixture.h"
 #include "scene/database.h"
 #include "scene/database_copy.h"
+#include "scene/database_inspector.h"
 #include "scene/reconstruction.h"
 #include "test_utils.h"
 #include "util/error.h"
@@ -19,6 +20,7 @@
 namespace colmap_gcn {
 namespace {
 
+using test::DatabaseInspector;
 using test::ExpectErrorContaining;
 using test::FakeColmap;
 using Arguments = std::vector<std::string>;
@@ -185,8 +187,8 @@ TEST(FeatureExtractionColmap, ExtractsAndMapsOverlappingImages) {
   const FeatureExtractionSummary extracted =
       ExtractFeatures(colmap, database_path, extraction);
   EXPECT_EQ(extracted.num_images, static_cast<size_t>(kNumImages));
-  EXPECT_EQ(Database(database_path).NumCameras(), 1u);
-  EXPECT_GT(Database(database_path).NumKeypoints(), 0u);
+  EXPECT_EQ(DatabaseInspector(database_path).NumCameras(), 1u);
+  EXPECT_GT(DatabaseInspector(database_path).NumKeypoints(), 0u);
 
   colmap.Run(
       "exhaustive_matcher",

@@ -22,6 +22,7 @@
 
 #include "scene/colmap_scene_fixture.h"
 #include "scene/database.h"
+#include "scene/database_inspector.h"
 #include "test_utils.h"
 #include "util/file.h"
 #include "util/string.h"
@@ -30,12 +31,14 @@ namespace colmap_gcn {
 namespace {
 
 namespace fs = std::filesystem;
+using test::DatabaseInspector;
 using test::ExecuteSql;
 using test::FrontendExe;
 using test::LeaveCommittedDataInWal;
 using test::QuerySqlInt;
 using test::RealColmapExe;
 using test::RunShell;
+using test::TwoViewGeometry;
 
 const int kNumImages = 8;
 const int kNumPairs = kNumImages * (kNumImages - 1) / 2;
@@ -260,8 +263,8 @@ TEST_F(DatabaseSafety, MatchesCommittedOnlyToTheWalAreKept) {
       << output;
   ExpectCompleteDatabase(crashed, *reference_pairs_);
   // The rows COLMAP had committed are the ones kept, not matched again.
-  const Database before(matched);
-  const Database after(crashed);
+  const DatabaseInspector before(matched);
+  const DatabaseInspector after(crashed);
   for (const auto& info : before.ReadTwoViewGeometryInfos()) {
     const auto [id1, id2] = PairIdToImagePair(info.pair_id);
     const TwoViewGeometry kept = after.ReadTwoViewGeometry(id1, id2);

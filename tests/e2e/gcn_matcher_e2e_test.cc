@@ -14,6 +14,7 @@
 #include "gcn/model_file.h"
 #include "retrieval/vlad.h"
 #include "scene/database.h"
+#include "scene/database_inspector.h"
 #include "scene/reconstruction.h"
 #include "test_utils.h"
 #include "util/file.h"
@@ -22,6 +23,7 @@
 namespace colmap_gcn {
 namespace {
 
+using test::DatabaseInspector;
 using test::FrontendBinDir;
 using test::FrontendExe;
 using test::RealColmapExe;
@@ -129,8 +131,8 @@ TEST_F(GcnMatcherEndToEnd, ExhaustivePairingEqualsColmapExhaustiveMatcher) {
   // that noise show the pairs and --SiftMatching.* options reached COLMAP
   // unchanged (a different ratio or distance threshold moves them far more).
   {
-    const Database colmap_database(colmap_db);
-    const Database our_database(ours_db);
+    const DatabaseInspector colmap_database(colmap_db);
+    const DatabaseInspector our_database(ours_db);
     double our_total = 0;
     double colmap_total = 0;
     for (const auto& [pair_id, geometry] : colmap_geometries) {

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "scene/database.h"
+#include "scene/database_inspector.h"
 #include "scene/reconstruction.h"
 #include "test_utils.h"
 #include "util/file.h"
@@ -17,6 +18,7 @@
 namespace colmap_gcn {
 namespace {
 
+using test::DatabaseInspector;
 using test::FrontendExe;
 using test::RealColmapExe;
 using test::RunShell;
@@ -79,7 +81,7 @@ class RetrievalEndToEnd : public testing::Test {
                      &output),
               0)
         << output;
-    *num_pairs = Database(database).NumTwoViewGeometries();
+    *num_pairs = DatabaseInspector(database).NumTwoViewGeometries();
     const std::string sparse = JoinPaths(dir_->Path(), name + "_sparse");
     CreateDirIfNotExists(sparse);
     ASSERT_EQ(Colmap("mapper --database_path " + database + " --image_path " +

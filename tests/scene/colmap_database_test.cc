@@ -12,6 +12,7 @@
 
 #include "scene/colmap_scene_fixture.h"
 #include "scene/database.h"
+#include "scene/database_inspector.h"
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -19,7 +20,11 @@
 namespace colmap_gcn {
 namespace {
 
+using test::DatabaseInspector;
+using test::FeatureKeypoints;
+using test::FeatureMatches;
 using test::QuerySqlInt;
+using test::TwoViewGeometry;
 
 class ColmapDatabase : public ::testing::Test {
  protected:
@@ -71,7 +76,7 @@ std::string* ColmapDatabase::log_ = nullptr;
 bool ColmapDatabase::ok_ = false;
 
 TEST_F(ColmapDatabase, CountsMatchSql) {
-  Database database(Path());
+  DatabaseInspector database(Path());
   EXPECT_EQ(database.Schema(), DatabaseSchema::kColmap38);
   EXPECT_EQ(database.NumImages(), 4u);
   EXPECT_EQ(database.NumImages(),
@@ -90,7 +95,7 @@ TEST_F(ColmapDatabase, CountsMatchSql) {
 }
 
 TEST_F(ColmapDatabase, ImageIdsMapToNames) {
-  Database database(Path());
+  DatabaseInspector database(Path());
   const std::vector<DatabaseImage> images = database.ReadAllImages();
   ASSERT_EQ(images.size(), names_->size());
   std::set<std::string> names;
@@ -114,7 +119,7 @@ TEST_F(ColmapDatabase, ImageIdsMapToNames) {
 }
 
 TEST_F(ColmapDatabase, FeaturesMatchSql) {
-  Database database(Path());
+  DatabaseInspector database(Path());
   for (const DatabaseImage& image : database.ReadAllImages()) {
     const std::string where =
         " WHERE image_id = " + std::to_string(image.image_id);
@@ -140,7 +145,7 @@ TEST_F(ColmapDatabase, FeaturesMatchSql) {
 }
 
 TEST_F(ColmapDatabase, MatchesAndGeometriesMatchSql) {
-  Database database(Path());
+  DatabaseInspector database(Path());
   const std::vector<DatabaseImage> images = database.ReadAllImages();
   size_t num_verified = 0;
   for (const TwoViewGeometryInfo& info : database.ReadTwoViewGeometryInfos()) {
@@ -210,7 +215,7 @@ TEST_F(ColmapDatabase, ReadOnlyLeavesFileUnchanged) {
   std::ifstream before_file(Path(), std::ios::binary);
   const std::string before(std::istreambuf_iterator<char>(before_file), {});
   {
-    Database database(Path());
+    DatabaseInspector database(Path());
     for (const DatabaseImage& image : database.ReadAllImages()) {
       database.ReadKeypoints(image.image_id);
       database.ReadDescriptors(image.image_id);

@@ -12,6 +12,7 @@
 #include <Eigen/LU>
 
 #include "scene/colmap_scene_fixture.h"
+#include "scene/database_inspector.h"
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -19,10 +20,14 @@
 namespace colmap_gcn {
 namespace {
 
+using test::DatabaseInspector;
 using test::ExecuteSql;
 using test::ExpectErrorContaining;
+using test::FeatureKeypoints;
+using test::FeatureMatches;
 using test::kColmap38Schema;
 using test::QuerySqlInt;
+using test::TwoViewGeometry;
 
 // A COLMAP 4.x-like layout: rigs/frames/frame_data/pose_priors tables, images
 // without prior columns, descriptors with a type column.
@@ -175,7 +180,7 @@ TEST(Database, DetectsSchemas) {
                  HexBlob(std::vector<double>{500, 501, 320, 240}) +
                  ", 0);"
                  "INSERT INTO images VALUES (1, 'a.jpg', 1);");
-  Database database(new_path);
+  DatabaseInspector database(new_path);
   EXPECT_EQ(database.Schema(), DatabaseSchema::kColmap39Plus);
   EXPECT_STREQ(DatabaseSchemaName(database.Schema()), "COLMAP 3.9+");
   EXPECT_EQ(database.NumImages(), 1u);
@@ -260,7 +265,7 @@ class HandMadeDatabase : public ::testing::Test {
 };
 
 TEST_F(HandMadeDatabase, ReadsCountsImagesAndFeatures) {
-  Database database(path_);
+  DatabaseInspector database(path_);
   EXPECT_EQ(database.Schema(), DatabaseSchema::kColmap38);
   EXPECT_EQ(database.NumCameras(), 1u);
   EXPECT_EQ(database.NumImages(), 3u);
@@ -307,7 +312,7 @@ TEST_F(HandMadeDatabase, ReadsCountsImagesAndFeatures) {
 }
 
 TEST_F(HandMadeDatabase, OrientsMatchesAndGeometryAsRequested) {
-  Database database(path_);
+  DatabaseInspector database(path_);
   const FeatureMatches forward = database.ReadMatches(3, 5);
   ASSERT_EQ(forward.rows(), 3);
   EXPECT_EQ(forward(2, 0), 2u);
@@ -370,16 +375,18 @@ TEST_F(HandMadeDatabase, OrientsMatchesAndGeometryAsRequested) {
 TEST_F(HandMadeDatabase, CorruptBlobIsError) {
   ExecuteSql(path_,
              "UPDATE keypoints SET rows = 3 WHERE image_id = 3;"
-             "UPDATE matches SET cols = 3;");
-  Database database(path_);
+             "UPDATE matches SET cols = 3;"
+             "UPDATE descriptors SET rows = 2 WHERE image_id = 3;");
+  DatabaseInspector database(path_);
   ExpectErrorContaining([&] { database.ReadKeypoints(3); }, path_);
   ExpectErrorContaining([&] { database.ReadMatches(3, 5); }, "matches");
+  ExpectErrorContaining([&] { database.ReadDescriptors(3); }, "descriptors");
 }
 
 TEST_F(HandMadeDatabase, ReadOnlyNeverWrites) {
   const std::string before = ReadFileBytes(path_);
   {
-    Database database(path_);
+    DatabaseInspector database(path_);
     DatabaseCamera camera = database.ReadAllCameras()[0];
     EXPECT_THROW(database.UpdateCamera(camera), Error);
   }
@@ -404,7 +411,7 @@ TEST_F(HandMadeDatabase, WritesCamera) {
     camera.camera_id = 77;
     EXPECT_THROW(database.UpdateCamera(camera), Error);  // no such camera
   }
-  Database database(path_);
+  DatabaseInspector database(path_);
   const DatabaseCamera camera = database.ReadAllCameras()[0];
   EXPECT_EQ(camera.model_id, 1);
   EXPECT_EQ(camera.width, 1536u);

@@ -1,0 +1,381 @@
+#include "scene/database_inspector.h"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "util/error.h"
+
+namespace colmap_gcn {
+namespace test {
+namespace {
+
+// A prepared statement that finalizes itself and throws a one-line Error
+// naming the database on any sqlite failure.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& db_path, const char* sql)
+      : db_(db), db_path_(db_path) {
+    if (sqlite3_prepare_v2(db_, sql, -1, &stmt_, nullptr) != SQLITE_OK) {
+      Fail("preparing");
+    }
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  void BindInt64(const int index, const int64_t value) {
+    if (sqlite3_bind_int64(stmt_, index, value) != SQLITE_OK) Fail("binding");
+  }
+  void BindText(const int index, const std::string& value) {
+    if (sqlite3_bind_text(stmt_,
+                          index,
+                          value.data(),
+                          static_cast<int>(value.size()),
+                          SQLITE_TRANSIENT) != SQLITE_OK) {
+      Fail("binding");
+    }
+  }
+
+  // Returns true when a row is available, false when the statement is done.
+  bool Step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    Fail("executing");
+  }
+
+  int64_t Int64(const int col) const {
+    return sqlite3_column_int64(stmt_, col);
+  }
+  bool IsNull(const int col) const {
+    return sqlite3_column_type(stmt_, col) == SQLITE_NULL;
+  }
+  std::string Text(const int col) const {
+    const unsigned char* text = sqlite3_column_text(stmt_, col);
+    return text == nullptr ? std::string()
+                           : std::string(reinterpret_cast<const char*>(text),
+                                         sqlite3_column_bytes(stmt_, col));
+  }
+  // Blob pointer (may be null for NULL or empty blobs) and its size.
+  const void* Blob(const int col, size_t* num_bytes) const {
+    const void* data = sqlite3_column_blob(stmt_, col);
+    *num_bytes = static_cast<size_t>(sqlite3_column_bytes(stmt_, col));
+    return data;
+  }
+
+  const std::string& DbPath() const { return db_path_; }
+
+ private:
+  [[noreturn]] void Fail(const char* action) const {
+    ThrowError("database ",
+               db_path_,
+               ": sqlite error while ",
+               action,
+               " '",
+               stmt_ != nullptr ? sqlite3_sql(stmt_) : "statement",
+               "': ",
+               sqlite3_errmsg(db_));
+  }
+
+  sqlite3* db_;
+  const std::string& db_path_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+// A single-integer query (COUNT, SUM); NULL gives 0.
+size_t QueryCount(sqlite3* db, const std::string& db_path, const char* sql) {
+  Statement stmt(db, db_path, sql);
+  if (!stmt.Step() || stmt.IsNull(0)) return 0;
+  return static_cast<size_t>(std::max<int64_t>(0, stmt.Int64(0)));
+}
+
+// Reads COLMAP's (rows, cols, data) column triple starting at col. A NULL or
+// empty blob with zero rows is an empty matrix; any size mismatch is
+// corruption.
+template <typename MatrixType>
+MatrixType ReadMatrixBlob(const Statement& stmt,
+                          const int col,
+                          const char* table,
+                          const int64_t key) {
+  typedef typename MatrixType::Scalar Scalar;
+  const int64_t rows = stmt.Int64(col);
+  const int64_t cols = stmt.Int64(col + 1);
+  size_t num_bytes = 0;
+  const void* data = stmt.Blob(col + 2, &num_bytes);
+
+  const bool fixed_cols = MatrixType::ColsAtCompileTime != Eigen::Dynamic;
+  const size_t expected_bytes =
+      rows < 0 || cols < 0 ? 0
+                           : static_cast<size_t>(rows) *
+                                 static_cast<size_t>(cols) * sizeof(Scalar);
+  if (rows < 0 || cols < 0 ||
+      (fixed_cols && rows > 0 && cols != MatrixType::ColsAtCompileTime) ||
+      num_bytes != expected_bytes) {
+    ThrowError("database ",
+               stmt.DbPath(),
+               ": blob of ",
+               num_bytes,
+               " bytes in ",
+               table,
+               " for id ",
+               key,
+               " does not match its shape ",
+               rows,
+               "x",
+               cols);
+  }
+  MatrixType matrix(
+      rows,
+      fixed_cols ? static_cast<int64_t>(MatrixType::ColsAtCompileTime) : cols);
+  if (expected_bytes > 0) {
+    std::memcpy(matrix.data(), data, expected_bytes);
+  }
+  return matrix;
+}
+
+// Reads a fixed-size float64 blob (F, E, H as 9 row-major values, qvec,
+// tvec). A NULL/empty blob keeps the default; other sizes are corruption.
+template <int N>
+void ReadDoubleBlob(const Statement& stmt,
+                    const int col,
+                    const char* name,
+                    const int64_t pair_id,
+                    double* values) {
+  size_t num_bytes = 0;
+  const void* data = stmt.Blob(col, &num_bytes);
+  if (num_bytes == 0) return;
+  if (num_bytes != N * sizeof(double)) {
+    ThrowError("database ",
+               stmt.DbPath(),
+               ": ",
+               name,
+               " blob of two_view_geometries pair_id ",
+               pair_id,
+               " has ",
+               num_bytes,
+               " bytes, expected ",
+               N * sizeof(double));
+  }
+  std::memcpy(values, data, num_bytes);
+}
+
+// COLMAP writes F, E, H as row-major 3x3.
+Eigen::Matrix3d ReadRowMajorMatrix3d(const Statement& stmt,
+                                     const int col,
+                                     const char* name,
+                                     const int64_t pair_id) {
+  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> matrix =
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor>::Zero();
+  ReadDoubleBlob<9>(stmt, col, name, pair_id, matrix.data());
+  return matrix;
+}
+
+// Expresses a two-view geometry estimated for (image1, image2) as the one for
+// (image2, image1), as COLMAP's TwoViewGeometry::Invert does.
+void InvertTwoViewGeometry(TwoViewGeometry* geometry) {
+  geometry->F.transposeInPlace();
+  geometry->E.transposeInPlace();
+  // An unset (zero) homography has no inverse; keep it zero rather than
+  // filling it with infinities.
+  if (geometry->H.determinant() != 0.0) {
+    geometry->H = geometry->H.inverse().eval();
+  }
+  if (geometry->qvec.norm() > 0.0) {
+    const Eigen::Vector4d q = geometry->qvec.normalized();
+    const Eigen::Quaterniond q_inv(q(0), -q(1), -q(2), -q(3));
+    geometry->tvec = -(q_inv.toRotationMatrix() * geometry->tvec);
+    geometry->qvec = Eigen::Vector4d(q(0), -q(1), -q(2), -q(3));
+  }
+  geometry->inlier_matches.col(0).swap(geometry->inlier_matches.col(1));
+}
+
+DatabaseImage ReadImageRow(const Statement& stmt) {
+  DatabaseImage image;
+  image.image_id = static_cast<image_t>(stmt.Int64(0));
+  image.name = stmt.Text(1);
+  image.camera_id = static_cast<camera_t>(stmt.Int64(2));
+  return image;
+}
+
+}  // namespace
+
+size_t DatabaseInspector::NumCameras() const {
+  return QueryCount(Handle(), Path(), "SELECT COUNT(*) FROM cameras");
+}
+
+size_t DatabaseInspector::NumKeypoints() const {
+  return QueryCount(Handle(), Path(), "SELECT SUM(rows) FROM keypoints");
+}
+
+size_t DatabaseInspector::NumMatchedPairs() const {
+  return QueryCount(Handle(), Path(), "SELECT COUNT(*) FROM matches");
+}
+
+size_t DatabaseInspector::NumTwoViewGeometries() const {
+  return QueryCount(
+      Handle(), Path(), "SELECT COUNT(*) FROM two_view_geometries");
+}
+
+std::vector<DatabaseCamera> DatabaseInspector::ReadAllCameras() const {
+  Statement stmt(Handle(),
+                 Path(),
+                 "SELECT camera_id, model, width, height, params, "
+                 "prior_focal_length FROM cameras ORDER BY camera_id");
+  std::vector<DatabaseCamera> cameras;
+  while (stmt.Step()) {
+    DatabaseCamera camera;
+    camera.camera_id = static_cast<camera_t>(stmt.Int64(0));
+    camera.model_id = static_cast<int>(stmt.Int64(1));
+    camera.width = static_cast<uint64_t>(stmt.Int64(2));
+    camera.height = static_cast<uint64_t>(stmt.Int64(3));
+    size_t num_bytes = 0;
+    const void* data = stmt.Blob(4, &num_bytes);
+    if (num_bytes % sizeof(double) != 0) {
+      ThrowError("database ",
+                 Path(),
+                 ": params blob of camera ",
+                 camera.camera_id,
+                 " has ",
+                 num_bytes,
+                 " bytes, not a multiple of 8");
+    }
+    camera.params.resize(num_bytes / sizeof(double));
+    if (num_bytes > 0) {
+      std::memcpy(camera.params.data(), data, num_bytes);
+    }
+    camera.has_prior_focal_length = stmt.Int64(5) != 0;
+    cameras.push_back(std::move(camera));
+  }
+  return cameras;
+}
+
+bool DatabaseInspector::ExistsImageWithName(const std::string& name) const {
+  Statement stmt(Handle(), Path(), "SELECT 1 FROM images WHERE name = ?");
+  stmt.BindText(1, name);
+  return stmt.Step();
+}
+
+DatabaseImage DatabaseInspector::ReadImageWithName(
+    const std::string& name) const {
+  Statement stmt(Handle(),
+                 Path(),
+                 "SELECT image_id, name, camera_id FROM images WHERE name = ?");
+  stmt.BindText(1, name);
+  if (!stmt.Step()) {
+    ThrowError("database ", Path(), " has no image named '", name, "'");
+  }
+  return ReadImageRow(stmt);
+}
+
+FeatureKeypoints DatabaseInspector::ReadKeypoints(
+    const image_t image_id) const {
+  Statement stmt(Handle(),
+                 Path(),
+                 "SELECT rows, cols, data FROM keypoints WHERE image_id = ?");
+  stmt.BindInt64(1, image_id);
+  if (!stmt.Step()) {
+    return FeatureKeypoints(0, 2);
+  }
+  FeatureKeypoints keypoints =
+      ReadMatrixBlob<FeatureKeypoints>(stmt, 0, "keypoints", image_id);
+  const Eigen::Index cols = keypoints.cols();
+  if (keypoints.rows() > 0 && cols != 2 && cols != 4 && cols != 6) {
+    ThrowError("database ",
+               Path(),
+               ": keypoints of image ",
+               image_id,
+               " have ",
+               cols,
+               " columns, expected 2, 4 or 6");
+  }
+  return keypoints;
+}
+
+size_t DatabaseInspector::NumKeypointsForImage(const image_t image_id) const {
+  Statement stmt(
+      Handle(), Path(), "SELECT rows FROM keypoints WHERE image_id = ?");
+  stmt.BindInt64(1, image_id);
+  return stmt.Step() ? static_cast<size_t>(stmt.Int64(0)) : 0;
+}
+
+FeatureMatches DatabaseInspector::ReadMatches(const image_t image_id1,
+                                              const image_t image_id2) const {
+  const int64_t pair_id =
+      static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2));
+  Statement stmt(Handle(),
+                 Path(),
+                 "SELECT rows, cols, data FROM matches WHERE pair_id = ?");
+  stmt.BindInt64(1, pair_id);
+  if (!stmt.Step()) {
+    return FeatureMatches(0, 2);
+  }
+  FeatureMatches matches =
+      ReadMatrixBlob<FeatureMatches>(stmt, 0, "matches", pair_id);
+  if (SwapImagePair(image_id1, image_id2)) {
+    matches.col(0).swap(matches.col(1));
+  }
+  return matches;
+}
+
+std::vector<image_pair_t> DatabaseInspector::ReadMatchedPairIds() const {
+  Statement stmt(
+      Handle(), Path(), "SELECT pair_id FROM matches ORDER BY pair_id");
+  std::vector<image_pair_t> pair_ids;
+  while (stmt.Step()) {
+    pair_ids.push_back(static_cast<image_pair_t>(stmt.Int64(0)));
+  }
+  return pair_ids;
+}
+
+bool DatabaseInspector::ExistsMatches(const image_t image_id1,
+                                      const image_t image_id2) const {
+  Statement stmt(Handle(), Path(), "SELECT 1 FROM matches WHERE pair_id = ?");
+  stmt.BindInt64(1,
+                 static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
+  return stmt.Step();
+}
+
+TwoViewGeometry DatabaseInspector::ReadTwoViewGeometry(
+    const image_t image_id1, const image_t image_id2) const {
+  const int64_t key =
+      static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2));
+  Statement stmt(Handle(),
+                 Path(),
+                 "SELECT rows, cols, data, config, F, E, H, qvec, tvec "
+                 "FROM two_view_geometries WHERE pair_id = ?");
+  stmt.BindInt64(1, key);
+  TwoViewGeometry geometry;
+  if (!stmt.Step()) {
+    geometry.inlier_matches = FeatureMatches(0, 2);
+    return geometry;
+  }
+  geometry.inlier_matches =
+      ReadMatrixBlob<FeatureMatches>(stmt, 0, "two_view_geometries", key);
+  geometry.config = static_cast<int>(stmt.Int64(3));
+  geometry.F = ReadRowMajorMatrix3d(stmt, 4, "F", key);
+  geometry.E = ReadRowMajorMatrix3d(stmt, 5, "E", key);
+  geometry.H = ReadRowMajorMatrix3d(stmt, 6, "H", key);
+  ReadDoubleBlob<4>(stmt, 7, "qvec", key, geometry.qvec.data());
+  ReadDoubleBlob<3>(stmt, 8, "tvec", key, geometry.tvec.data());
+  if (SwapImagePair(image_id1, image_id2)) {
+    InvertTwoViewGeometry(&geometry);
+  }
+  return geometry;
+}
+
+bool DatabaseInspector::ExistsTwoViewGeometry(const image_t image_id1,
+                                              const image_t image_id2) const {
+  Statement stmt(
+      Handle(), Path(), "SELECT 1 FROM two_view_geometries WHERE pair_id = ?");
+  stmt.BindInt64(1,
+                 static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
+  return stmt.Step();
+}
+
+}  // namespace test
+}  // namespace colmap_gcn
