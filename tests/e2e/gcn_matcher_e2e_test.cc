@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <set>
@@ -46,6 +47,30 @@ std::map<image_pair_t, std::pair<int, size_t>> Geometries(
     geometries[info.pair_id] = {info.config, info.num_inliers};
   }
   return geometries;
+}
+
+// N of "adaptive round 1: N pairs attempted" in a gcn_matcher log; 0 if
+// absent.
+size_t NumRound1Pairs(const std::string& output) {
+  const std::string tag = "adaptive round 1: ";
+  const size_t at = output.find(tag);
+  if (at == std::string::npos) return 0;
+  return std::strtoul(output.c_str() + at + tag.size(), nullptr, 10);
+}
+
+// Whether every pair of `a` is in `b`, in either order.
+bool IsSubset(const std::vector<ImageNamePair>& a,
+              const std::vector<ImageNamePair>& b) {
+  std::set<ImageNamePair> in_b;
+  for (const auto& [name1, name2] : b) {
+    in_b.emplace(std::min(name1, name2), std::max(name1, name2));
+  }
+  for (const auto& [name1, name2] : a) {
+    if (in_b.count({std::min(name1, name2), std::max(name1, name2)}) == 0) {
+      return false;
+    }
+  }
+  return true;
 }
 
 std::set<image_pair_t> VerifiedPairs(const std::string& database_path) {
@@ -399,6 +424,13 @@ TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
   EXPECT_LT(pairs.size(),
             static_cast<size_t>(kNumImages * (kNumImages - 1) / 2));
   EXPECT_EQ(Geometries(database_path).size(), pairs.size());
+  // Round 1 depends on the GCN scores alone, later rounds on COLMAP's
+  // verification, which does not repeat exactly between fresh matchings
+  // (inlier counts vary): a fresh copy must repeat round 1, and given the
+  // same verification results (a matched database) every round.
+  const size_t num_round1_pairs = NumRound1Pairs(output);
+  ASSERT_GT(num_round1_pairs, 0u) << output;
+  ASSERT_LT(num_round1_pairs, pairs.size()) << output;
 
   const std::string database_path2 = CopyOfBase("adaptive2.db");
   const std::string pairs_path2 =
@@ -408,7 +440,24 @@ TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
                    &output),
             0)
       << output;
-  EXPECT_EQ(ReadTextFile(pairs_path2), ReadTextFile(pairs_path));
+  EXPECT_EQ(NumRound1Pairs(output), num_round1_pairs) << output;
+
+  // Round 1 alone: the budget stops the generator after it, on a copy of
+  // the matched database (nothing left to match).
+  const std::string database_path5 = JoinPaths(dir_->Path(), "adaptive5.db");
+  ASSERT_EQ(RunShell("cp " + database_path + " " + database_path5), 0);
+  const std::string round1_path =
+      JoinPaths(dir_->Path(), "adaptive_round1.txt");
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path5 + args +
+                       round1_path + " --GcnMatching.max_num_pairs " +
+                       std::to_string(num_round1_pairs),
+                   &output),
+            0)
+      << output;
+  const auto round1 = ReadPairsFile(round1_path);
+  EXPECT_EQ(round1.size(), num_round1_pairs);
+  EXPECT_TRUE(IsSubset(round1, pairs));
+  EXPECT_TRUE(IsSubset(round1, ReadPairsFile(pairs_path2)));
 
   const std::string pairs_path3 =
       JoinPaths(dir_->Path(), "adaptive_pairs3.txt");
@@ -425,7 +474,7 @@ TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
 
   // Interrupted in round 2 (COLMAP crashes on its second run): the
   // database is untouched; the next run replays round 1 from the working
-  // copy and ends with the same pairs.
+  // copy and matches the rest.
   const std::string database_path4 = CopyOfBase("adaptive4.db");
   const std::string counter = JoinPaths(dir_->Path(), "adaptive_runs");
   const std::string fake = JoinPaths(dir_->Path(), "crashing_in_round2");
@@ -464,7 +513,9 @@ TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
   EXPECT_NE(output.find("resuming the interrupted matching"), std::string::npos)
       << output;
   EXPECT_FALSE(ExistsFile(database_path4 + ".gcn-partial"));
-  EXPECT_EQ(ReadTextFile(pairs_path4), ReadTextFile(pairs_path));
+  const auto pairs4 = ReadPairsFile(pairs_path4);
+  EXPECT_TRUE(IsSubset(round1, pairs4));
+  EXPECT_EQ(Geometries(database_path4).size(), pairs4.size());
 }
 
 TEST_F(GcnMatcherEndToEnd, MissingColmapLeavesDatabaseUntouched) {
