@@ -7,6 +7,7 @@
 #include <set>
 
 #include "scene/camera_models.h"
+#include "scene/sqlite_statement.h"
 #include "util/error.h"
 #include "util/file.h"
 
@@ -25,149 +26,7 @@ const char* const kRequiredTables[] = {"cameras",
 const char* const kNewerTables[] = {
     "pose_priors", "rigs", "rig_sensors", "frames", "frame_data"};
 
-// A prepared statement that finalizes itself and turns every sqlite failure
-// into a one-line Error naming the database, so that callers never have to
-// check return codes.
-class Statement {
- public:
-  Statement(sqlite3* db, const std::string& db_path, const char* sql)
-      : db_(db), db_path_(db_path) {
-    if (sqlite3_prepare_v2(db_, sql, -1, &stmt_, nullptr) != SQLITE_OK) {
-      Fail("preparing");
-    }
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-
-  void BindInt64(const int index, const int64_t value) {
-    Check(sqlite3_bind_int64(stmt_, index, value), "binding");
-  }
-  void BindBlob(const int index, const void* data, const size_t num_bytes) {
-    Check(
-        sqlite3_bind_blob(
-            stmt_, index, data, static_cast<int>(num_bytes), SQLITE_TRANSIENT),
-        "binding");
-  }
-
-  // Returns true when a row is available, false when the statement is done.
-  bool Step() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    Fail("executing");
-  }
-
-  void Execute() {
-    while (Step()) {
-    }
-  }
-
-  int64_t Int64(const int col) const {
-    return sqlite3_column_int64(stmt_, col);
-  }
-  bool IsNull(const int col) const {
-    return sqlite3_column_type(stmt_, col) == SQLITE_NULL;
-  }
-  std::string Text(const int col) const {
-    const unsigned char* text = sqlite3_column_text(stmt_, col);
-    const int num_bytes = sqlite3_column_bytes(stmt_, col);
-    return text == nullptr
-               ? std::string()
-               : std::string(reinterpret_cast<const char*>(text), num_bytes);
-  }
-  // Blob pointer (may be null for NULL or empty blobs) and its size.
-  const void* Blob(const int col, size_t* num_bytes) const {
-    const void* data = sqlite3_column_blob(stmt_, col);
-    *num_bytes = static_cast<size_t>(sqlite3_column_bytes(stmt_, col));
-    return data;
-  }
-
-  const std::string& DbPath() const { return db_path_; }
-
- private:
-  void Check(const int rc, const char* action) const {
-    if (rc != SQLITE_OK) Fail(action);
-  }
-
-  [[noreturn]] void Fail(const char* action) const {
-    ThrowError("database ",
-               db_path_,
-               ": sqlite error while ",
-               action,
-               " '",
-               stmt_ != nullptr ? sqlite3_sql(stmt_) : "statement",
-               "': ",
-               sqlite3_errmsg(db_));
-  }
-
-  sqlite3* db_;
-  const std::string& db_path_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
-
-// Runs a query that returns a single integer (COUNT, SUM); NULL gives 0.
-size_t QueryCount(sqlite3* db, const std::string& db_path, const char* sql) {
-  Statement stmt(db, db_path, sql);
-  if (!stmt.Step() || stmt.IsNull(0)) return 0;
-  return static_cast<size_t>(std::max<int64_t>(0, stmt.Int64(0)));
-}
-
-// Reads the (rows, cols, data) column triple starting at col into a matrix,
-// as COLMAP stores keypoints, descriptors and matches. A NULL or empty blob
-// with zero rows is an empty matrix; any size mismatch is corruption.
-template <typename MatrixType>
-MatrixType ReadMatrixBlob(const Statement& stmt,
-                          const int col,
-                          const char* table,
-                          const int64_t key) {
-  typedef typename MatrixType::Scalar Scalar;
-  const int64_t rows = stmt.Int64(col);
-  const int64_t cols = stmt.Int64(col + 1);
-  size_t num_bytes = 0;
-  const void* data = stmt.Blob(col + 2, &num_bytes);
-
-  const bool fixed_cols = MatrixType::ColsAtCompileTime != Eigen::Dynamic;
-  if (rows < 0 || cols < 0 ||
-      (fixed_cols && rows > 0 && cols != MatrixType::ColsAtCompileTime)) {
-    ThrowError("database ",
-               stmt.DbPath(),
-               ": invalid shape ",
-               rows,
-               "x",
-               cols,
-               " in ",
-               table,
-               " for id ",
-               key);
-  }
-  const size_t expected_bytes =
-      static_cast<size_t>(rows) * static_cast<size_t>(cols) * sizeof(Scalar);
-  if (num_bytes != expected_bytes) {
-    ThrowError("database ",
-               stmt.DbPath(),
-               ": blob of ",
-               num_bytes,
-               " bytes in ",
-               table,
-               " for id ",
-               key,
-               " does not match its shape ",
-               rows,
-               "x",
-               cols);
-  }
-
-  const int64_t matrix_cols =
-      fixed_cols ? static_cast<int64_t>(MatrixType::ColsAtCompileTime) : cols;
-  MatrixType matrix(rows, matrix_cols);
-  if (expected_bytes > 0) {
-    std::memcpy(matrix.data(), data, expected_bytes);
-  }
-  return matrix;
-}
-
-DatabaseImage ReadImageRow(const Statement& stmt) {
+DatabaseImage ReadImageRow(const SqliteStatement& stmt) {
   DatabaseImage image;
   image.image_id = static_cast<image_t>(stmt.Int64(0));
   image.name = stmt.Text(1);
@@ -305,7 +164,7 @@ void Database::DetectSchema() {
   }
   bool has_image_priors = false;
   {
-    Statement stmt(db_, path_, "PRAGMA table_info(images)");
+    SqliteStatement stmt(db_, path_, "PRAGMA table_info(images)");
     while (stmt.Step()) {
       has_image_priors |= stmt.Text(1) == "prior_qw";
     }
@@ -332,18 +191,18 @@ void Database::RequireWritable() const {
 }
 
 size_t Database::NumImages() const {
-  return QueryCount(db_, path_, "SELECT COUNT(*) FROM images");
+  return SqliteQueryCount(db_, path_, "SELECT COUNT(*) FROM images");
 }
 
 size_t Database::NumDescriptors() const {
-  return QueryCount(db_, path_, "SELECT SUM(rows) FROM descriptors");
+  return SqliteQueryCount(db_, path_, "SELECT SUM(rows) FROM descriptors");
 }
 
 std::vector<DatabaseImage> Database::ReadAllImages() const {
-  Statement stmt(db_,
-                 path_,
-                 "SELECT image_id, name, camera_id FROM images "
-                 "ORDER BY image_id");
+  SqliteStatement stmt(db_,
+                       path_,
+                       "SELECT image_id, name, camera_id FROM images "
+                       "ORDER BY image_id");
   std::vector<DatabaseImage> images;
   while (stmt.Step()) {
     images.push_back(ReadImageRow(stmt));
@@ -352,9 +211,10 @@ std::vector<DatabaseImage> Database::ReadAllImages() const {
 }
 
 FeatureDescriptors Database::ReadDescriptors(const image_t image_id) const {
-  Statement stmt(db_,
-                 path_,
-                 "SELECT rows, cols, data FROM descriptors WHERE image_id = ?");
+  SqliteStatement stmt(
+      db_,
+      path_,
+      "SELECT rows, cols, data FROM descriptors WHERE image_id = ?");
   stmt.BindInt64(1, image_id);
   if (!stmt.Step()) {
     return FeatureDescriptors(0, 128);
@@ -363,7 +223,8 @@ FeatureDescriptors Database::ReadDescriptors(const image_t image_id) const {
 }
 
 size_t Database::NumDescriptorsForImage(const image_t image_id) const {
-  Statement stmt(db_, path_, "SELECT rows FROM descriptors WHERE image_id = ?");
+  SqliteStatement stmt(
+      db_, path_, "SELECT rows FROM descriptors WHERE image_id = ?");
   stmt.BindInt64(1, image_id);
   return stmt.Step() ? static_cast<size_t>(stmt.Int64(0)) : 0;
 }
@@ -371,10 +232,10 @@ size_t Database::NumDescriptorsForImage(const image_t image_id) const {
 std::vector<TwoViewGeometryInfo> Database::ReadTwoViewGeometryInfos() const {
   // Only the small columns: the blobs would dominate the cost on large
   // databases and callers just need the pair graph.
-  Statement stmt(db_,
-                 path_,
-                 "SELECT pair_id, config, rows FROM two_view_geometries "
-                 "ORDER BY pair_id");
+  SqliteStatement stmt(db_,
+                       path_,
+                       "SELECT pair_id, config, rows FROM two_view_geometries "
+                       "ORDER BY pair_id");
   std::vector<TwoViewGeometryInfo> infos;
   while (stmt.Step()) {
     TwoViewGeometryInfo info;
@@ -401,10 +262,11 @@ void Database::UpdateCamera(const DatabaseCamera& camera) {
                camera.params.size(),
                " params");
   }
-  Statement stmt(db_,
-                 path_,
-                 "UPDATE cameras SET model = ?, width = ?, height = ?, "
-                 "params = ?, prior_focal_length = ? WHERE camera_id = ?");
+  SqliteStatement stmt(
+      db_,
+      path_,
+      "UPDATE cameras SET model = ?, width = ?, height = ?, "
+      "params = ?, prior_focal_length = ? WHERE camera_id = ?");
   stmt.BindInt64(1, camera.model_id);
   stmt.BindInt64(2, static_cast<int64_t>(camera.width));
   stmt.BindInt64(3, static_cast<int64_t>(camera.height));

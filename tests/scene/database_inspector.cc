@@ -8,140 +8,17 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "scene/sqlite_statement.h"
 #include "util/error.h"
 
 namespace colmap_gcn {
 namespace test {
 namespace {
 
-// A prepared statement that finalizes itself and throws a one-line Error
-// naming the database on any sqlite failure.
-class Statement {
- public:
-  Statement(sqlite3* db, const std::string& db_path, const char* sql)
-      : db_(db), db_path_(db_path) {
-    if (sqlite3_prepare_v2(db_, sql, -1, &stmt_, nullptr) != SQLITE_OK) {
-      Fail("preparing");
-    }
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-
-  void BindInt64(const int index, const int64_t value) {
-    if (sqlite3_bind_int64(stmt_, index, value) != SQLITE_OK) Fail("binding");
-  }
-  void BindText(const int index, const std::string& value) {
-    if (sqlite3_bind_text(stmt_,
-                          index,
-                          value.data(),
-                          static_cast<int>(value.size()),
-                          SQLITE_TRANSIENT) != SQLITE_OK) {
-      Fail("binding");
-    }
-  }
-
-  // Returns true when a row is available, false when the statement is done.
-  bool Step() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    Fail("executing");
-  }
-
-  int64_t Int64(const int col) const {
-    return sqlite3_column_int64(stmt_, col);
-  }
-  bool IsNull(const int col) const {
-    return sqlite3_column_type(stmt_, col) == SQLITE_NULL;
-  }
-  std::string Text(const int col) const {
-    const unsigned char* text = sqlite3_column_text(stmt_, col);
-    return text == nullptr ? std::string()
-                           : std::string(reinterpret_cast<const char*>(text),
-                                         sqlite3_column_bytes(stmt_, col));
-  }
-  // Blob pointer (may be null for NULL or empty blobs) and its size.
-  const void* Blob(const int col, size_t* num_bytes) const {
-    const void* data = sqlite3_column_blob(stmt_, col);
-    *num_bytes = static_cast<size_t>(sqlite3_column_bytes(stmt_, col));
-    return data;
-  }
-
-  const std::string& DbPath() const { return db_path_; }
-
- private:
-  [[noreturn]] void Fail(const char* action) const {
-    ThrowError("database ",
-               db_path_,
-               ": sqlite error while ",
-               action,
-               " '",
-               stmt_ != nullptr ? sqlite3_sql(stmt_) : "statement",
-               "': ",
-               sqlite3_errmsg(db_));
-  }
-
-  sqlite3* db_;
-  const std::string& db_path_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
-
-// A single-integer query (COUNT, SUM); NULL gives 0.
-size_t QueryCount(sqlite3* db, const std::string& db_path, const char* sql) {
-  Statement stmt(db, db_path, sql);
-  if (!stmt.Step() || stmt.IsNull(0)) return 0;
-  return static_cast<size_t>(std::max<int64_t>(0, stmt.Int64(0)));
-}
-
-// Reads COLMAP's (rows, cols, data) column triple starting at col. A NULL or
-// empty blob with zero rows is an empty matrix; any size mismatch is
-// corruption.
-template <typename MatrixType>
-MatrixType ReadMatrixBlob(const Statement& stmt,
-                          const int col,
-                          const char* table,
-                          const int64_t key) {
-  typedef typename MatrixType::Scalar Scalar;
-  const int64_t rows = stmt.Int64(col);
-  const int64_t cols = stmt.Int64(col + 1);
-  size_t num_bytes = 0;
-  const void* data = stmt.Blob(col + 2, &num_bytes);
-
-  const bool fixed_cols = MatrixType::ColsAtCompileTime != Eigen::Dynamic;
-  const size_t expected_bytes =
-      rows < 0 || cols < 0 ? 0
-                           : static_cast<size_t>(rows) *
-                                 static_cast<size_t>(cols) * sizeof(Scalar);
-  if (rows < 0 || cols < 0 ||
-      (fixed_cols && rows > 0 && cols != MatrixType::ColsAtCompileTime) ||
-      num_bytes != expected_bytes) {
-    ThrowError("database ",
-               stmt.DbPath(),
-               ": blob of ",
-               num_bytes,
-               " bytes in ",
-               table,
-               " for id ",
-               key,
-               " does not match its shape ",
-               rows,
-               "x",
-               cols);
-  }
-  MatrixType matrix(
-      rows,
-      fixed_cols ? static_cast<int64_t>(MatrixType::ColsAtCompileTime) : cols);
-  if (expected_bytes > 0) {
-    std::memcpy(matrix.data(), data, expected_bytes);
-  }
-  return matrix;
-}
-
 // Reads a fixed-size float64 blob (F, E, H as 9 row-major values, qvec,
 // tvec). A NULL/empty blob keeps the default; other sizes are corruption.
 template <int N>
-void ReadDoubleBlob(const Statement& stmt,
+void ReadDoubleBlob(const SqliteStatement& stmt,
                     const int col,
                     const char* name,
                     const int64_t pair_id,
@@ -165,7 +42,7 @@ void ReadDoubleBlob(const Statement& stmt,
 }
 
 // COLMAP writes F, E, H as row-major 3x3.
-Eigen::Matrix3d ReadRowMajorMatrix3d(const Statement& stmt,
+Eigen::Matrix3d ReadRowMajorMatrix3d(const SqliteStatement& stmt,
                                      const int col,
                                      const char* name,
                                      const int64_t pair_id) {
@@ -194,7 +71,7 @@ void InvertTwoViewGeometry(TwoViewGeometry* geometry) {
   geometry->inlier_matches.col(0).swap(geometry->inlier_matches.col(1));
 }
 
-DatabaseImage ReadImageRow(const Statement& stmt) {
+DatabaseImage ReadImageRow(const SqliteStatement& stmt) {
   DatabaseImage image;
   image.image_id = static_cast<image_t>(stmt.Int64(0));
   image.name = stmt.Text(1);
@@ -205,27 +82,27 @@ DatabaseImage ReadImageRow(const Statement& stmt) {
 }  // namespace
 
 size_t DatabaseInspector::NumCameras() const {
-  return QueryCount(Handle(), Path(), "SELECT COUNT(*) FROM cameras");
+  return SqliteQueryCount(Handle(), Path(), "SELECT COUNT(*) FROM cameras");
 }
 
 size_t DatabaseInspector::NumKeypoints() const {
-  return QueryCount(Handle(), Path(), "SELECT SUM(rows) FROM keypoints");
+  return SqliteQueryCount(Handle(), Path(), "SELECT SUM(rows) FROM keypoints");
 }
 
 size_t DatabaseInspector::NumMatchedPairs() const {
-  return QueryCount(Handle(), Path(), "SELECT COUNT(*) FROM matches");
+  return SqliteQueryCount(Handle(), Path(), "SELECT COUNT(*) FROM matches");
 }
 
 size_t DatabaseInspector::NumTwoViewGeometries() const {
-  return QueryCount(
+  return SqliteQueryCount(
       Handle(), Path(), "SELECT COUNT(*) FROM two_view_geometries");
 }
 
 std::vector<DatabaseCamera> DatabaseInspector::ReadAllCameras() const {
-  Statement stmt(Handle(),
-                 Path(),
-                 "SELECT camera_id, model, width, height, params, "
-                 "prior_focal_length FROM cameras ORDER BY camera_id");
+  SqliteStatement stmt(Handle(),
+                       Path(),
+                       "SELECT camera_id, model, width, height, params, "
+                       "prior_focal_length FROM cameras ORDER BY camera_id");
   std::vector<DatabaseCamera> cameras;
   while (stmt.Step()) {
     DatabaseCamera camera;
@@ -255,16 +132,17 @@ std::vector<DatabaseCamera> DatabaseInspector::ReadAllCameras() const {
 }
 
 bool DatabaseInspector::ExistsImageWithName(const std::string& name) const {
-  Statement stmt(Handle(), Path(), "SELECT 1 FROM images WHERE name = ?");
+  SqliteStatement stmt(Handle(), Path(), "SELECT 1 FROM images WHERE name = ?");
   stmt.BindText(1, name);
   return stmt.Step();
 }
 
 DatabaseImage DatabaseInspector::ReadImageWithName(
     const std::string& name) const {
-  Statement stmt(Handle(),
-                 Path(),
-                 "SELECT image_id, name, camera_id FROM images WHERE name = ?");
+  SqliteStatement stmt(
+      Handle(),
+      Path(),
+      "SELECT image_id, name, camera_id FROM images WHERE name = ?");
   stmt.BindText(1, name);
   if (!stmt.Step()) {
     ThrowError("database ", Path(), " has no image named '", name, "'");
@@ -274,9 +152,10 @@ DatabaseImage DatabaseInspector::ReadImageWithName(
 
 FeatureKeypoints DatabaseInspector::ReadKeypoints(
     const image_t image_id) const {
-  Statement stmt(Handle(),
-                 Path(),
-                 "SELECT rows, cols, data FROM keypoints WHERE image_id = ?");
+  SqliteStatement stmt(
+      Handle(),
+      Path(),
+      "SELECT rows, cols, data FROM keypoints WHERE image_id = ?");
   stmt.BindInt64(1, image_id);
   if (!stmt.Step()) {
     return FeatureKeypoints(0, 2);
@@ -297,7 +176,7 @@ FeatureKeypoints DatabaseInspector::ReadKeypoints(
 }
 
 size_t DatabaseInspector::NumKeypointsForImage(const image_t image_id) const {
-  Statement stmt(
+  SqliteStatement stmt(
       Handle(), Path(), "SELECT rows FROM keypoints WHERE image_id = ?");
   stmt.BindInt64(1, image_id);
   return stmt.Step() ? static_cast<size_t>(stmt.Int64(0)) : 0;
@@ -307,9 +186,10 @@ FeatureMatches DatabaseInspector::ReadMatches(const image_t image_id1,
                                               const image_t image_id2) const {
   const int64_t pair_id =
       static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2));
-  Statement stmt(Handle(),
-                 Path(),
-                 "SELECT rows, cols, data FROM matches WHERE pair_id = ?");
+  SqliteStatement stmt(
+      Handle(),
+      Path(),
+      "SELECT rows, cols, data FROM matches WHERE pair_id = ?");
   stmt.BindInt64(1, pair_id);
   if (!stmt.Step()) {
     return FeatureMatches(0, 2);
@@ -323,7 +203,7 @@ FeatureMatches DatabaseInspector::ReadMatches(const image_t image_id1,
 }
 
 std::vector<image_pair_t> DatabaseInspector::ReadMatchedPairIds() const {
-  Statement stmt(
+  SqliteStatement stmt(
       Handle(), Path(), "SELECT pair_id FROM matches ORDER BY pair_id");
   std::vector<image_pair_t> pair_ids;
   while (stmt.Step()) {
@@ -334,7 +214,8 @@ std::vector<image_pair_t> DatabaseInspector::ReadMatchedPairIds() const {
 
 bool DatabaseInspector::ExistsMatches(const image_t image_id1,
                                       const image_t image_id2) const {
-  Statement stmt(Handle(), Path(), "SELECT 1 FROM matches WHERE pair_id = ?");
+  SqliteStatement stmt(
+      Handle(), Path(), "SELECT 1 FROM matches WHERE pair_id = ?");
   stmt.BindInt64(1,
                  static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
   return stmt.Step();
@@ -344,10 +225,10 @@ TwoViewGeometry DatabaseInspector::ReadTwoViewGeometry(
     const image_t image_id1, const image_t image_id2) const {
   const int64_t key =
       static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2));
-  Statement stmt(Handle(),
-                 Path(),
-                 "SELECT rows, cols, data, config, F, E, H, qvec, tvec "
-                 "FROM two_view_geometries WHERE pair_id = ?");
+  SqliteStatement stmt(Handle(),
+                       Path(),
+                       "SELECT rows, cols, data, config, F, E, H, qvec, tvec "
+                       "FROM two_view_geometries WHERE pair_id = ?");
   stmt.BindInt64(1, key);
   TwoViewGeometry geometry;
   if (!stmt.Step()) {
@@ -370,7 +251,7 @@ TwoViewGeometry DatabaseInspector::ReadTwoViewGeometry(
 
 bool DatabaseInspector::ExistsTwoViewGeometry(const image_t image_id1,
                                               const image_t image_id2) const {
-  Statement stmt(
+  SqliteStatement stmt(
       Handle(), Path(), "SELECT 1 FROM two_view_geometries WHERE pair_id = ?");
   stmt.BindInt64(1,
                  static_cast<int64_t>(ImagePairToPairId(image_id1, image_id2)));
