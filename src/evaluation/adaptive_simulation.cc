@@ -3,19 +3,10 @@
 #include <set>
 #include <unordered_set>
 
+#include "evaluation/collection.h"
 #include "util/error.h"
 
 namespace colmap_gcn {
-namespace {
-
-// The scene of a merged collection's image ("<scene>__<name>"); "" when the
-// name has no such prefix.
-std::string ScenePrefix(const std::string& name) {
-  const size_t pos = name.find("__");
-  return pos == std::string::npos ? "" : name.substr(0, pos);
-}
-
-}  // namespace
 
 VerificationTable::VerificationTable(const Database& database)
     : images_(database.ReadAllImages()) {
@@ -80,7 +71,8 @@ PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,
     }
     const std::string& name1 = table.Name(pair.first);
     const std::string& name2 = table.Name(pair.second);
-    if (ScenePrefix(name1) != ScenePrefix(name2)) ++quality.num_cross_scene;
+    if (CollectionScene(name1) != CollectionScene(name2))
+      ++quality.num_cross_scene;
     const ImageNamePair key = name1 < name2 ? ImageNamePair(name1, name2)
                                             : ImageNamePair(name2, name1);
     if (matchable.count(key) > 0) matchable_found.insert(key);

@@ -15,6 +15,7 @@
 #include "controllers/incremental_mapping.h"
 #include "controllers/pair_generator_registry.h"
 #include "controllers/pair_matching.h"
+#include "evaluation/collection.h"
 #include "evaluation/common_tracks.h"
 #include "evaluation/dataset.h"
 #include "evaluation/figures.h"
@@ -548,6 +549,12 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
                                     scene.images.size(),
                                     scene.has_gt ? &scene.gt : nullptr,
                                     options_.pose);
+  if (scene_result->is_collection) {
+    result.num_cross_scene_attempted = CountCrossScenePairs(attempted);
+    result.num_cross_scene_verified = CountCrossScenePairs(verified);
+    result.collection =
+        ReadCollectionRegistration(scene.image_names, JoinPaths(dir, "sparse"));
+  }
 
   const std::string figure_dir =
       JoinPaths(JoinPaths(options_.output_path, "figures"), scene.dataset.name);
@@ -563,6 +570,42 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
                                   figure);
   WriteJsonFile(JoinPaths(dir, "result.json"), MethodResultToJson(result));
   return result;
+}
+
+std::set<std::string> CollectionScenes(
+    const std::vector<std::string>& image_names) {
+  std::set<std::string> scenes;
+  for (const std::string& name : image_names) {
+    scenes.insert(CollectionScene(name));
+  }
+  return scenes;
+}
+
+// Each scene's registered images with exhaustive matching, from the
+// results.json of a benchmark that ran the scenes alone.
+std::map<std::string, size_t> ReadRegisteredAlone(
+    const std::string& results_path, const std::set<std::string>& scenes) {
+  const Json results = ReadJsonFile(results_path);
+  std::map<std::string, size_t> registered;
+  for (const Json& scene : results.value("scenes", Json::array())) {
+    const std::string name = scene.value("name", std::string());
+    if (scenes.count(name) == 0) continue;
+    for (const Json& method : scene.value("methods", Json::array())) {
+      if (method.value("method", std::string()) == "exhaustive" &&
+          method.value("status", std::string()) == "ok") {
+        registered[name] = method.at("sfm").value("num_registered", size_t{0});
+      }
+    }
+  }
+  for (const std::string& scene : scenes) {
+    if (registered.count(scene) == 0) {
+      ThrowError("--Benchmark.alone_results_path ",
+                 results_path,
+                 " has no exhaustive run of the collection's scene ",
+                 scene);
+    }
+  }
+  return registered;
 }
 
 void WritePrecisionRecallFigure(const std::string& output_path,
@@ -615,6 +658,11 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
   std::sort(scene.image_names.begin(), scene.image_names.end());
   result.num_images = scene.images.size();
   result.image_names = scene.image_names;
+  result.is_collection = IsMergedCollection(scene.image_names);
+  if (result.is_collection && !options_.alone_results_path.empty()) {
+    result.registered_alone = ReadRegisteredAlone(
+        options_.alone_results_path, CollectionScenes(scene.image_names));
+  }
   LoadGroundTruth(&scene);
   result.has_gt_cameras = scene.has_gt;
   // Pair ids repeat between scenes with the same number of images: the
@@ -728,6 +776,9 @@ void BenchmarkOptions::Check() const {
   label_pair_filter.Check();
   CHECK_OPTION_NUM_THREADS(mapper_num_threads);
   CHECK_OPTION_GE(mapper_min_model_size, 0);
+  CHECK_OPTION(alone_results_path,
+               alone_results_path.empty() || ExistsFile(alone_results_path),
+               "no such file");
   // The options of every generator a method uses, before any work.
   for (const BenchmarkMethod& method : ParseBenchmarkMethods(methods)) {
     if (!method.IsOracle()) {

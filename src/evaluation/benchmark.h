@@ -39,6 +39,12 @@ struct BenchmarkOptions {
   // default 10 would drop every partial model of a small scene).
   int mapper_min_model_size = 3;
 
+  // results.json of a benchmark that ran a merged collection's scenes
+  // alone with the exhaustive method (scripts/collection_benchmark.sh):
+  // each scene's registered images there are what the collection's
+  // methods are compared against. "": no comparison.
+  std::string alone_results_path = "";
+
   // Passed to COLMAP: feature_extractor (--ImageReader.*,
   // --SiftExtraction.*), matches_importer (--SiftMatching.*), mapper
   // (--Mapper.*).

@@ -80,6 +80,105 @@ const MethodResult* FindExhaustive(const SceneResult& scene) {
   return nullptr;
 }
 
+// Merged collections: what crosses between the collection's places, and
+// whether each place still reconstructs as it does alone.
+void CollectionSection(const SceneResult& scene, std::ostringstream* out) {
+  const size_t num_pairs = scene.num_images * (scene.num_images - 1) / 2;
+  const MethodResult* exhaustive = FindExhaustive(scene);
+  // Without an exhaustive run, its time is estimated from this run's
+  // pooled per-pair matching time (every method's seconds over its pairs).
+  double seconds = 0;
+  size_t pairs = 0;
+  for (const MethodResult& method : scene.methods) {
+    if (!method.Ok() || !method.message.empty()) continue;  // copies
+    seconds += method.matching_seconds;
+    pairs += method.num_attempted;
+  }
+  const double per_pair = pairs > 0 ? seconds / pairs : NAN;
+  const double exhaustive_seconds = exhaustive != nullptr
+                                        ? exhaustive->matching_seconds
+                                        : per_pair * num_pairs;
+  *out << "### Collection: pairs across its scenes, each scene's "
+          "registration\n\n";
+  if (exhaustive != nullptr) {
+    *out << "Exhaustive matching time: measured, "
+         << Format("%.1f", exhaustive_seconds) << " s.\n\n";
+  } else {
+    *out << "Exhaustive matching time: **estimated**, " << num_pairs
+         << " pairs x " << Format("%.3f", per_pair)
+         << " s (this run's matching seconds over its attempted pairs, all "
+            "methods) = "
+         << Format("%.0f", exhaustive_seconds) << " s.\n\n";
+  }
+  Table crossing({"method",
+                  "TAM",
+                  "cross-scene attempted",
+                  "% of TAM",
+                  "cross-scene verified",
+                  "pairing + matching (s)",
+                  "/ exhaustive",
+                  "models",
+                  "mixed models",
+                  "scenes >= 95% of alone"});
+  std::vector<std::string> header = {"scene", "images", "alone (exhaustive)"};
+  std::vector<const MethodResult*> shown;
+  for (const MethodResult& method : scene.methods) {
+    if (!method.Ok() || method.collection.scenes.empty()) continue;
+    shown.push_back(&method);
+    header.push_back(MethodLabel(method));
+    size_t kept = 0;
+    for (const auto& [name, entry] : method.collection.scenes) {
+      const auto alone = scene.registered_alone.find(name);
+      if (alone != scene.registered_alone.end() &&
+          entry.num_registered >= 0.95 * alone->second) {
+        ++kept;
+      }
+    }
+    const double total = method.pairing_seconds + method.matching_seconds;
+    crossing.Row(
+        {MethodLabel(method),
+         Count(method.num_attempted),
+         Count(method.num_cross_scene_attempted),
+         Format("%.2f",
+                method.num_attempted == 0
+                    ? NAN
+                    : 100.0 * method.num_cross_scene_attempted /
+                          method.num_attempted),
+         Count(method.num_cross_scene_verified),
+         Format("%.1f", total),
+         Format("%.3f", total / exhaustive_seconds),
+         Count(method.collection.num_models),
+         Count(method.collection.num_mixed_models),
+         scene.registered_alone.empty()
+             ? "-"
+             : Count(kept) + "/" + Count(method.collection.scenes.size())});
+  }
+  *out << crossing.Str() << "\n";
+  if (shown.empty()) return;
+  Table per_scene(header);
+  for (const auto& [name, entry] : shown.front()->collection.scenes) {
+    const auto alone = scene.registered_alone.find(name);
+    std::vector<std::string> row = {
+        name,
+        Count(entry.num_images),
+        alone == scene.registered_alone.end() ? "-" : Count(alone->second)};
+    for (const MethodResult* method : shown) {
+      const auto found = method->collection.scenes.find(name);
+      const size_t registered = found == method->collection.scenes.end()
+                                    ? 0
+                                    : found->second.num_registered;
+      const bool below = alone != scene.registered_alone.end() &&
+                         registered < 0.95 * alone->second;
+      row.push_back(below ? "**" + Count(registered) + "**"
+                          : Count(registered));
+    }
+    per_scene.Row(row);
+  }
+  *out << "Registered images per scene (its best model; **bold**: below 95 % "
+          "of the scene alone):\n\n"
+       << per_scene.Str() << "\n";
+}
+
 void SceneSection(const SceneResult& scene, std::ostringstream* out) {
   *out << "## " << scene.name << "\n\n";
   if (scene.status != "ok") {
@@ -205,6 +304,10 @@ void SceneSection(const SceneResult& scene, std::ostringstream* out) {
   if (!pose.Empty()) {
     *out << "\n### Cameras against ground truth (similarity-aligned)\n\n"
          << pose.Str();
+  }
+  if (scene.is_collection) {
+    *out << "\n";
+    CollectionSection(scene, out);
   }
   if (!scene.figures.empty()) {
     *out << "\n";

@@ -67,6 +67,21 @@ Json MethodResultToJson(const MethodResult& result) {
   json["session"] = result.session;
   json["retrieval"] = RetrievalMetricsToJson(result.retrieval);
   json["sfm"] = SfmMetricsToJson(result.sfm);
+  if (!result.collection.scenes.empty()) {
+    json["cross_scene_attempted"] = result.num_cross_scene_attempted;
+    json["cross_scene_verified"] = result.num_cross_scene_verified;
+    Json collection = Json::object();
+    collection["num_models"] = result.collection.num_models;
+    collection["num_mixed_models"] = result.collection.num_mixed_models;
+    Json scenes = Json::object();
+    for (const auto& [scene, entry] : result.collection.scenes) {
+      scenes[scene] = {{"num_images", entry.num_images},
+                       {"num_registered", entry.num_registered},
+                       {"num_models", entry.num_models}};
+    }
+    collection["scenes"] = scenes;
+    json["collection"] = collection;
+  }
   return json;
 }
 
@@ -82,6 +97,14 @@ Json SceneResultToJson(const SceneResult& result) {
   json["num_matchable_pairs"] = result.num_matchable_pairs;
   json["has_gt_cameras"] = result.has_gt_cameras;
   json["extraction_seconds"] = result.extraction_seconds;
+  if (result.is_collection) {
+    json["is_collection"] = true;
+    Json alone = Json::object();
+    for (const auto& [scene, registered] : result.registered_alone) {
+      alone[scene] = registered;
+    }
+    json["registered_alone"] = alone;
+  }
   Json methods = Json::array();
   for (const MethodResult& method : result.methods) {
     methods.push_back(MethodResultToJson(method));

@@ -1,8 +1,10 @@
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "evaluation/collection.h"
 #include "evaluation/json_file.h"
 #include "evaluation/labels.h"
 #include "evaluation/metrics.h"
@@ -25,6 +27,11 @@ struct MethodResult {
   std::string session;  // the benchmark run that matched
   RetrievalMetrics retrieval;
   SfmMetrics sfm;
+  // Merged collections only (collection.h): pairs across scenes, attempted
+  // and verified, and each scene's registration.
+  size_t num_cross_scene_attempted = 0;
+  size_t num_cross_scene_verified = 0;
+  CollectionRegistration collection;
 
   bool Ok() const { return status == "ok"; }
   double UsefulRatio() const {
@@ -46,6 +53,11 @@ struct SceneResult {
   bool has_gt_cameras = false;
   double extraction_seconds = 0;
   std::vector<std::string> image_names;  // sorted, for figures
+  // A merged collection ("<scene>__<name>" images, collection.h), and its
+  // scenes' registered images when benchmarked alone with exhaustive
+  // matching (empty without --Benchmark.alone_results_path).
+  bool is_collection = false;
+  std::map<std::string, size_t> registered_alone;
   std::vector<MethodResult> methods;
   std::vector<std::string> figures;  // relative to the output folder
 };

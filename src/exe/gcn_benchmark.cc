@@ -83,6 +83,10 @@ int RunGcnBenchmark(int argc, char** argv) {
   manager.AddDefaultOption("Benchmark.mapper_min_model_size",
                            &options.mapper_min_model_size,
                            "smaller models are discarded by the mapper");
+  manager.AddDefaultOption("Benchmark.alone_results_path",
+                           &options.alone_results_path,
+                           "merged collections: results.json of their scenes "
+                           "benchmarked alone with exhaustive matching");
   manager.AddDefaultOption(
       "Benchmark.verbose", &options.verbose, "show all of COLMAP's output");
   manager.AddDefaultOption("Benchmark.keep_going",

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 #include "evaluation/common_tracks.h"
@@ -291,6 +292,96 @@ TEST_F(GcnBenchmarkEndToEnd, PoseFilteredLabelMatchingMatchesOnlyKeptPairs) {
       colmap, JoinPaths(SceneDir(), "base.db"), gt, options, args, work_dir);
   EXPECT_EQ(again.num_pairs_matched, first.num_pairs_matched);
   EXPECT_EQ(again.matching_seconds, 0.0);
+}
+
+}  // namespace
+}  // namespace colmap_gcn
+
+namespace colmap_gcn {
+namespace {
+
+// Pairs of a pairs file whose images carry different "<scene>__" prefixes,
+// counted here from the file rather than by the code under test.
+size_t CrossScenePairsInFile(const std::string& path) {
+  std::istringstream lines(ReadTextFile(path));
+  std::string name1, name2;
+  size_t count = 0;
+  while (lines >> name1 >> name2) {
+    if (name1.substr(0, name1.find("__")) !=
+        name2.substr(0, name2.find("__"))) {
+      ++count;
+    }
+  }
+  return count;
+}
+
+// scripts/collection_benchmark.sh on two small generated places: each alone
+// with exhaustive matching, merged, and the merged collection's report.
+TEST(CollectionBenchmarkScript, ComparesTheCollectionWithItsScenesAlone) {
+  if (RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
+  const TemporaryDirectory dir("colmap_gcn_collection");
+  const std::string places = JoinPaths(dir.Path(), "places");
+  for (const auto& [name, seed] :
+       std::vector<std::pair<std::string, int>>{{"alpha", 3}, {"beta", 4}}) {
+    std::string output;
+    ASSERT_EQ(RunShell(ShellQuote(FrontendExe()) + " gcn_synth --output_path " +
+                           ShellQuote(JoinPaths(places, name)) +
+                           " --GcnSynth.num_images 8 --GcnSynth.seed " +
+                           std::to_string(seed),
+                       &output),
+              0)
+        << output;
+  }
+  const std::string out = JoinPaths(dir.Path(), "out");
+  const std::string build =
+      std::filesystem::path(FrontendExe()).parent_path().parent_path();
+  const std::string command =
+      "COLMAP_GCN_BUILD=" + ShellQuote(build) + " bash " +
+      ShellQuote(
+          JoinPaths(COLMAP_GCN_SOURCE_DIR, "scripts/collection_benchmark.sh")) +
+      " " + ShellQuote(out) + " knn:3 " +
+      ShellQuote(JoinPaths(places, "alpha")) + " " +
+      ShellQuote(JoinPaths(places, "beta")) +
+      " -- --SiftExtraction.num_threads 2 --SiftMatching.num_threads 2";
+  std::string output;
+  ASSERT_EQ(RunShell(command, &output), 0) << output;
+
+  const Json alone = ReadJsonFile(JoinPaths(out, "alone/results.json"));
+  const Json run = ReadJsonFile(JoinPaths(out, "run/results.json"));
+  ASSERT_EQ(run.at("scenes").size(), 1u);
+  const Json& collection = run.at("scenes").at(0);
+  EXPECT_EQ(collection.at("num_images").get<int>(), 16);
+  ASSERT_TRUE(collection.value("is_collection", false));
+  for (const Json& scene : alone.at("scenes")) {
+    const std::string name = scene.at("name").get<std::string>();
+    EXPECT_EQ(collection.at("registered_alone").at(name).get<int>(),
+              scene.at("methods").at(0).at("sfm").at("num_registered"))
+        << name;
+  }
+  const Json& knn = collection.at("methods").at(0);
+  ASSERT_EQ(knn.at("status").get<std::string>(), "ok") << knn.dump();
+  EXPECT_EQ(
+      knn.at("cross_scene_attempted").get<size_t>(),
+      CrossScenePairsInFile(JoinPaths(out, "run/collection/knn-3/pairs.txt")));
+  const Json& scenes = knn.at("collection").at("scenes");
+  EXPECT_EQ(scenes.at("alpha").at("num_images").get<int>(), 8);
+  EXPECT_EQ(scenes.at("beta").at("num_images").get<int>(), 8);
+  EXPECT_LE(scenes.at("alpha").at("num_registered").get<int>(), 8);
+  const std::string report = ReadTextFile(JoinPaths(out, "run/report.md"));
+  EXPECT_NE(report.find("### Collection"), std::string::npos) << report;
+  EXPECT_NE(report.find("**estimated**, 120 pairs"), std::string::npos)
+      << report;
+
+  // A second run resumes from the caches and reports the same.
+  ASSERT_EQ(RunShell(command, &output), 0) << output;
+  EXPECT_NE(output.find("matching cached"), std::string::npos) << output;
+  EXPECT_EQ(ReadJsonFile(JoinPaths(out, "run/results.json"))
+                .at("scenes")
+                .at(0)
+                .at("methods")
+                .at(0)
+                .at("cross_scene_attempted"),
+            knn.at("cross_scene_attempted"));
 }
 
 }  // namespace
