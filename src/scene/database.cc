@@ -26,14 +26,6 @@ const char* const kRequiredTables[] = {"cameras",
 const char* const kNewerTables[] = {
     "pose_priors", "rigs", "rig_sensors", "frames", "frame_data"};
 
-DatabaseImage ReadImageRow(const SqliteStatement& stmt) {
-  DatabaseImage image;
-  image.image_id = static_cast<image_t>(stmt.Int64(0));
-  image.name = stmt.Text(1);
-  image.camera_id = static_cast<camera_t>(stmt.Int64(2));
-  return image;
-}
-
 }  // namespace
 
 image_pair_t ImagePairToPairId(image_t image_id1, image_t image_id2) {

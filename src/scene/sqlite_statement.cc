@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "scene/database.h"
+
 namespace colmap_gcn {
 
 SqliteStatement::SqliteStatement(sqlite3* db,
@@ -85,6 +87,14 @@ void SqliteStatement::Fail(const char* action) const {
              stmt_ != nullptr ? sqlite3_sql(stmt_) : "statement",
              "': ",
              sqlite3_errmsg(db_));
+}
+
+DatabaseImage ReadImageRow(const SqliteStatement& stmt) {
+  DatabaseImage image;
+  image.image_id = static_cast<image_t>(stmt.Int64(0));
+  image.name = stmt.Text(1);
+  image.camera_id = static_cast<camera_t>(stmt.Int64(2));
+  return image;
 }
 
 size_t SqliteQueryCount(sqlite3* db,

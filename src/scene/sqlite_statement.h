@@ -13,6 +13,8 @@ struct sqlite3_stmt;
 
 namespace colmap_gcn {
 
+struct DatabaseImage;
+
 // The SQLite access Database (and the tests' DatabaseInspector) build on;
 // only scene/ and test utilities include it.
 
@@ -55,6 +57,9 @@ class SqliteStatement {
 size_t SqliteQueryCount(sqlite3* db,
                         const std::string& db_path,
                         const char* sql);
+
+// An image from a row that starts (image_id, name, camera_id).
+DatabaseImage ReadImageRow(const SqliteStatement& stmt);
 
 // Reads the (rows, cols, data) column triple starting at col into a matrix,
 // as COLMAP stores keypoints, descriptors and matches. A NULL or empty blob

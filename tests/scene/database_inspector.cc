@@ -71,14 +71,6 @@ void InvertTwoViewGeometry(TwoViewGeometry* geometry) {
   geometry->inlier_matches.col(0).swap(geometry->inlier_matches.col(1));
 }
 
-DatabaseImage ReadImageRow(const SqliteStatement& stmt) {
-  DatabaseImage image;
-  image.image_id = static_cast<image_t>(stmt.Int64(0));
-  image.name = stmt.Text(1);
-  image.camera_id = static_cast<camera_t>(stmt.Int64(2));
-  return image;
-}
-
 }  // namespace
 
 size_t DatabaseInspector::NumCameras() const {
