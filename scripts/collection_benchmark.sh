@@ -8,8 +8,10 @@
 # SCENE_DIRs are image-folder scenes with one parent (e.g. ../shared/
 # datasets/books); METHODS a gcn_benchmark method list (e.g.
 # gcn,adaptive,graphmatch,knn:10). OPTIONs go to every gcn_benchmark run
-# (--SiftExtraction.*, --SiftMatching.*, --GcnMatching.*, --Benchmark.*).
-# Three steps, each cached in OUT so that an interrupted run resumes:
+# (--SiftExtraction.*, --SiftMatching.*, --GcnMatching.*, --Benchmark.*;
+# the first run sets --Benchmark.keep_going itself).
+# Scenes that build no model alone are left out with a message (their
+# pairs could not be labelled). Three steps, each cached in OUT so that an interrupted run resumes:
 #   OUT/alone/       every scene alone, exhaustive (features, labels and the
 #                    registered images the collection is compared against);
 #   OUT/collection/  the scenes merged (scripts/merge_scenes.sh);
@@ -60,8 +62,23 @@ done
 DATASETS="$(IFS=,; echo "${SCENES[*]}")"
 
 echo "collection_benchmark: 1/3 ${#SCENES[@]} scenes alone, exhaustive"
+# A scene that does not reconstruct alone has no reference labels: it is
+# left out of the collection (named below), not a reason to stop.
 "$COLMAP" gcn_benchmark --datasets "$DATASETS" --methods exhaustive \
-  --output_path "$OUT/alone" "${OPTIONS[@]}"
+  --output_path "$OUT/alone" --Benchmark.keep_going 1 "${OPTIONS[@]}"
+KEPT=()
+for name in "${NAMES[@]}"; do
+  if [ -f "$OUT/alone/$name/labels/labels.csv" ]; then
+    KEPT+=("$name")
+  else
+    echo "collection_benchmark: $name left out: no exhaustive model alone (see $OUT/alone/report.md)" >&2
+  fi
+done
+if [ "${#KEPT[@]}" -lt 2 ]; then
+  echo "collection_benchmark: fewer than two scenes reconstruct alone" >&2
+  exit 1
+fi
+NAMES=("${KEPT[@]}")
 
 DATA="$OUT/collection"
 SCENE_DIR="$OUT/run/collection"
