@@ -10,9 +10,13 @@ namespace colmap_gcn {
 
 VerificationTable::VerificationTable(const Database& database)
     : images_(database.ReadAllImages()) {
+  std::vector<std::string> names;
   for (size_t i = 0; i < images_.size(); ++i) {
     image_index_.emplace(images_[i].image_id, i);
+    names.push_back(images_[i].name);
   }
+  // A single scene's own names may contain "__" (web photos do).
+  is_collection_ = IsMergedCollection(names);
   for (const TwoViewGeometryInfo& info : database.ReadTwoViewGeometryInfos()) {
     geometries_.emplace(info.pair_id, info);
   }
@@ -71,8 +75,10 @@ PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,
     }
     const std::string& name1 = table.Name(pair.first);
     const std::string& name2 = table.Name(pair.second);
-    if (CollectionScene(name1) != CollectionScene(name2))
+    if (table.IsCollection() &&
+        CollectionScene(name1) != CollectionScene(name2)) {
       ++quality.num_cross_scene;
+    }
     const ImageNamePair key = name1 < name2 ? ImageNamePair(name1, name2)
                                             : ImageNamePair(name2, name1);
     if (matchable.count(key) > 0) matchable_found.insert(key);

@@ -21,9 +21,12 @@ class VerificationTable {
   PairVerification Lookup(image_t image_id1, image_t image_id2) const;
   const std::string& Name(image_t image_id) const;
   const std::vector<DatabaseImage>& Images() const { return images_; }
+  // A merged collection ("<scene>__<name>" images, collection.h).
+  bool IsCollection() const { return is_collection_; }
 
  private:
   std::vector<DatabaseImage> images_;
+  bool is_collection_ = false;
   std::unordered_map<image_t, size_t> image_index_;
   std::unordered_map<image_pair_t, TwoViewGeometryInfo> geometries_;
 };
@@ -35,7 +38,7 @@ struct PairSetQuality {
   size_t num_strong = 0;     // verified with >= strong_cut inliers
   size_t num_matchable = 0;  // labelled matchable pairs (0: no labels)
   size_t num_matchable_found = 0;
-  size_t num_cross_scene = 0;  // pairs across "<scene>__" name prefixes
+  size_t num_cross_scene = 0;  // pairs across a collection's scenes
   size_t num_images_with_strong = 0;
   double Recall() const {
     return num_matchable == 0 ? 0.0
