@@ -10,8 +10,8 @@
 # gcn,adaptive,graphmatch,knn:10). OPTIONs go to every gcn_benchmark run
 # (--SiftExtraction.*, --SiftMatching.*, --GcnMatching.*, --Benchmark.*;
 # the first run sets --Benchmark.keep_going itself).
-# Scenes that build no model alone are left out with a message (their
-# pairs could not be labelled). Three steps, each cached in OUT so that an interrupted run resumes:
+# Scenes whose pairs could not be labelled alone (e.g. no model) are left
+# out with a message. Three steps, each cached in OUT so that an interrupted run resumes:
 #   OUT/alone/       every scene alone, exhaustive (features, labels and the
 #                    registered images the collection is compared against);
 #   OUT/collection/  the scenes merged (scripts/merge_scenes.sh);
@@ -62,8 +62,8 @@ done
 DATASETS="$(IFS=,; echo "${SCENES[*]}")"
 
 echo "collection_benchmark: 1/3 ${#SCENES[@]} scenes alone, exhaustive"
-# A scene that does not reconstruct alone has no reference labels: it is
-# left out of the collection (named below), not a reason to stop.
+# A scene whose labels could not be built alone (e.g. no exhaustive model)
+# is left out of the collection (named below), not a reason to stop.
 "$COLMAP" gcn_benchmark --datasets "$DATASETS" --methods exhaustive \
   --output_path "$OUT/alone" --Benchmark.keep_going 1 "${OPTIONS[@]}"
 KEPT=()
@@ -71,7 +71,7 @@ for name in "${NAMES[@]}"; do
   if [ -f "$OUT/alone/$name/labels/labels.csv" ]; then
     KEPT+=("$name")
   else
-    echo "collection_benchmark: $name left out: no exhaustive model alone (see $OUT/alone/report.md)" >&2
+    echo "collection_benchmark: $name left out: no labels alone (see $OUT/alone/report.md)" >&2
   fi
 done
 if [ "${#KEPT[@]}" -lt 2 ]; then
