@@ -11,7 +11,8 @@
 # (--SiftExtraction.*, --SiftMatching.*, --GcnMatching.*, --Benchmark.*;
 # the first run sets --Benchmark.keep_going itself).
 # Scenes whose pairs could not be labelled alone (e.g. no model) are left
-# out with a message. Three steps, each cached in OUT so that an interrupted run resumes:
+# out with a message. Three steps, each cached in OUT so that an
+# interrupted run resumes:
 #   OUT/alone/       every scene alone, exhaustive (features, labels and the
 #                    registered images the collection is compared against);
 #   OUT/collection/  the scenes merged (scripts/merge_scenes.sh);
@@ -75,7 +76,7 @@ for name in "${NAMES[@]}"; do
   fi
 done
 if [ "${#KEPT[@]}" -lt 2 ]; then
-  echo "collection_benchmark: fewer than two scenes reconstruct alone" >&2
+  echo "collection_benchmark: fewer than two scenes have labels alone" >&2
   exit 1
 fi
 NAMES=("${KEPT[@]}")

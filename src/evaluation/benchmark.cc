@@ -572,15 +572,6 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
   return result;
 }
 
-std::set<std::string> CollectionScenes(
-    const std::vector<std::string>& image_names) {
-  std::set<std::string> scenes;
-  for (const std::string& name : image_names) {
-    scenes.insert(CollectionScene(name));
-  }
-  return scenes;
-}
-
 // Each scene's registered images with exhaustive matching, from the
 // results.json of a benchmark that ran the scenes alone.
 std::map<std::string, size_t> ReadRegisteredAlone(

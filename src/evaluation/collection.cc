@@ -1,6 +1,6 @@
 #include "evaluation/collection.h"
 
-#include <set>
+#include <algorithm>
 
 #include "scene/reconstruction_stats.h"
 
@@ -11,14 +11,18 @@ std::string CollectionScene(const std::string& image_name) {
   return pos == std::string::npos ? "" : image_name.substr(0, pos);
 }
 
-bool IsMergedCollection(const std::vector<std::string>& image_names) {
+std::set<std::string> CollectionScenes(
+    const std::vector<std::string>& image_names) {
   std::set<std::string> scenes;
   for (const std::string& name : image_names) {
-    const std::string scene = CollectionScene(name);
-    if (scene.empty()) return false;
-    scenes.insert(scene);
+    scenes.insert(CollectionScene(name));
   }
-  return scenes.size() >= 2;
+  return scenes;
+}
+
+bool IsMergedCollection(const std::vector<std::string>& image_names) {
+  const std::set<std::string> scenes = CollectionScenes(image_names);
+  return scenes.size() >= 2 && scenes.count("") == 0;
 }
 
 size_t CountCrossScenePairs(const std::vector<ImageNamePair>& pairs) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ namespace colmap_gcn {
 
 // The scene of a merged collection's image; "" when the name has no prefix.
 std::string CollectionScene(const std::string& image_name);
+
+// The scenes of these images (their prefixes; "" for a name without one).
+std::set<std::string> CollectionScenes(
+    const std::vector<std::string>& image_names);
 
 // True when every image carries a scene prefix and there are at least two
 // scenes.

@@ -23,6 +23,8 @@ TEST(Collection, SceneFromThePrefix) {
   EXPECT_EQ(CollectionScene("fox__0001.jpg"), "fox");
   EXPECT_EQ(CollectionScene("a__b__c.jpg"), "a");
   EXPECT_EQ(CollectionScene("0001.jpg"), "");
+  EXPECT_EQ(CollectionScenes({"b__1", "a__1", "b__2", "3"}),
+            (std::set<std::string>{"", "a", "b"}));
   EXPECT_TRUE(IsMergedCollection({"a__1.jpg", "b__1.jpg"}));
   // One scene, or a name without a scene, is not a collection.
   EXPECT_FALSE(IsMergedCollection({"a__1.jpg", "a__2.jpg"}));
