@@ -674,6 +674,7 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
         MethodResult copy = result.methods[earlier];
         copy.method = method.spec;
         copy.message = "same pairs as " + methods_[earlier].spec;
+        copy.same_as = methods_[earlier].spec;
         result.methods.push_back(copy);
         duplicate = true;
       }
@@ -689,6 +690,7 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
         copy.k = static_cast<int>(run.value("k", int64_t{0}));
         copy.pairing_seconds = run.value("pairing_seconds", 0.0);
         copy.message = "same pairs as " + owner;
+        copy.same_as = owner;
         result.methods.push_back(copy);
         break;
       }

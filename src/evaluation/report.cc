@@ -90,7 +90,7 @@ void CollectionSection(const SceneResult& scene, std::ostringstream* out) {
   double seconds = 0;
   size_t pairs = 0;
   for (const MethodResult& method : scene.methods) {
-    if (!method.Ok() || !method.message.empty()) continue;  // copies
+    if (!method.Ok() || !method.same_as.empty()) continue;
     seconds += method.matching_seconds;
     pairs += method.num_attempted;
   }

@@ -25,6 +25,7 @@ struct MethodResult {
   double matching_seconds = 0;    // COLMAP matching + verification
   double mapping_seconds = 0;
   std::string session;  // the benchmark run that matched
+  std::string same_as;  // the method whose run this row repeats, or ""
   RetrievalMetrics retrieval;
   SfmMetrics sfm;
   // Merged collections only (collection.h): pairs across scenes, attempted

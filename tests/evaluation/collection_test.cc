@@ -107,5 +107,38 @@ TEST(Collection, ReportComparesWithTheScenesAlone) {
       << report;
 }
 
+TEST(Collection, EstimateCountsEveryRunOnceAndRunsWithoutAModel) {
+  BenchmarkResults results;
+  results.methods = {"knn:5", "knn:50", "gcn"};
+  SceneResult scene;
+  scene.name = "collection";
+  scene.kind = "images";
+  scene.num_images = 101;  // 5050 pairs
+  scene.is_collection = true;
+  MethodResult knn;
+  knn.method = "knn:5";
+  knn.num_attempted = 300;
+  knn.matching_seconds = 60;
+  // A row that repeats knn:5's run must not count its seconds twice.
+  MethodResult copy = knn;
+  copy.method = "knn:50";
+  copy.message = "same pairs as knn:5";
+  copy.same_as = "knn:5";
+  // A run whose mapper built no model still matched its pairs.
+  MethodResult gcn = knn;
+  gcn.method = "gcn";
+  gcn.num_attempted = 100;
+  gcn.matching_seconds = 40;
+  gcn.message = "mapper produced no model";
+  scene.methods = {knn, copy, gcn};
+  results.scenes.push_back(scene);
+  const std::string report = FormatBenchmarkReport(results);
+  // (60 + 40) s over 300 + 100 pairs; the copy counted would give 0.229,
+  // the run without a model left out 0.200.
+  EXPECT_NE(report.find("**estimated**, 5050 pairs x 0.250 s"),
+            std::string::npos)
+      << report;
+}
+
 }  // namespace
 }  // namespace colmap_gcn
