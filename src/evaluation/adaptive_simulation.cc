@@ -1,5 +1,6 @@
 #include "evaluation/adaptive_simulation.h"
 
+#include <algorithm>
 #include <set>
 #include <unordered_set>
 
@@ -39,6 +40,24 @@ const std::string& VerificationTable::Name(image_t image_id) const {
   const auto it = image_index_.find(image_id);
   if (it == image_index_.end()) ThrowError("no image with id ", image_id);
   return images_[it->second].name;
+}
+
+std::vector<ImagePair> VerificationTable::StrongPairs(int strong_cut) const {
+  std::vector<ImagePair> pairs;
+  for (const auto& [pair_id, info] : geometries_) {
+    if (!IsVerifiedTwoViewGeometry(info.config, info.num_inliers) ||
+        info.num_inliers < static_cast<size_t>(strong_cut)) {
+      continue;
+    }
+    const ImagePair pair = PairIdToImagePair(pair_id);
+    if (image_index_.count(pair.first) == 0 ||
+        image_index_.count(pair.second) == 0) {
+      continue;
+    }
+    pairs.push_back(pair);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 
 PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,

@@ -23,6 +23,10 @@ class VerificationTable {
   const std::vector<DatabaseImage>& Images() const { return images_; }
   // A merged collection ("<scene>__<name>" images, collection.h).
   bool IsCollection() const { return is_collection_; }
+  // The pairs COLMAP verified with at least strong_cut inliers (image-id
+  // order, smaller id first; sorted): everything a loop that counts strong
+  // verifications as positives can learn as one.
+  std::vector<ImagePair> StrongPairs(int strong_cut) const;
 
  private:
   std::vector<DatabaseImage> images_;

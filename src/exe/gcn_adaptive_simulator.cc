@@ -217,6 +217,11 @@ int RunGcnAdaptiveSimulator(int argc, char** argv) {
     }
     PrintQuality("exhaustive", EvaluatePairSet(all, table, labels.get(), cut));
   }
+  // The ceiling of a loop that learns from strong verifications only: the
+  // labelled matchable pairs among them.
+  PrintQuality(
+      "exhaustive, strong only",
+      EvaluatePairSet(table.StrongPairs(cut), table, labels.get(), cut));
   return 0;
 }
 

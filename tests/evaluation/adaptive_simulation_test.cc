@@ -66,6 +66,17 @@ TEST(VerificationTable, EvaluatesAPairSetAtTheStrongCut) {
   EXPECT_EQ(quality.num_cross_scene, 2u);  // (1,3) and (2,4)
 }
 
+TEST(VerificationTable, StrongPairsAreTheVerifiedOnesAtTheCut) {
+  const TemporaryDirectory dir("colmap_gcn_simulation");
+  const Database database(
+      MakeDatabase(dir, {"a.jpg", "b.jpg", "c.jpg", "d.jpg"}));
+  const VerificationTable table(database);
+  EXPECT_EQ(table.StrongPairs(30), (std::vector<ImagePair>{{1, 2}}));
+  // (2,4) has 10 inliers (not verified), (3,4) a degenerate config.
+  EXPECT_EQ(table.StrongPairs(15), (std::vector<ImagePair>{{1, 2}, {1, 3}}));
+  EXPECT_TRUE(table.StrongPairs(201).empty());
+}
+
 TEST(VerificationTable, NamesWithUnderscoresAloneAreNoCollection) {
   // Web photos of one place may have "__" in their names.
   const TemporaryDirectory dir("colmap_gcn_simulation");
