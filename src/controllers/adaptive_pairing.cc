@@ -608,11 +608,75 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
   return block;
 }
 
-AdaptiveGcnPairingOptions::AdaptiveGcnPairingOptions() { gcn.k1 = 100; }
+AdaptiveGcnPairingOptions::AdaptiveGcnPairingOptions() {
+  gcn.k1 = 100;
+  knn.k = 100;
+}
 
 void AdaptiveGcnPairingOptions::Check() const {
   gcn.Check();
   adaptive.Check();
+  CHECK_OPTION_RANGE(similarity_weight, 0.0, 1.0);
+  if (similarity_weight > 0) knn.Check();
+}
+
+namespace {
+
+// Each unordered pair's percentile in (0, 1] within its list (the higher
+// score of a duplicate kept; ties share their mean percentile).
+std::unordered_map<uint64_t, double> ScorePercentiles(
+    const std::vector<PairCandidate>& candidates) {
+  std::unordered_map<uint64_t, float> best;
+  for (const PairCandidate& candidate : candidates) {
+    if (candidate.image_id1 == candidate.image_id2) continue;
+    const uint64_t key = (static_cast<uint64_t>(std::min(candidate.image_id1,
+                                                         candidate.image_id2))
+                          << 32) |
+                         std::max(candidate.image_id1, candidate.image_id2);
+    const auto [it, inserted] = best.emplace(key, candidate.score);
+    if (!inserted) it->second = std::max(it->second, candidate.score);
+  }
+  std::vector<float> scores;
+  scores.reserve(best.size());
+  for (const auto& [key, score] : best) scores.push_back(score);
+  std::sort(scores.begin(), scores.end());
+  std::unordered_map<uint64_t, double> percentiles;
+  const double n = static_cast<double>(scores.size());
+  for (const auto& [key, score] : best) {
+    const double low = static_cast<double>(
+        std::lower_bound(scores.begin(), scores.end(), score) - scores.begin());
+    const double high = static_cast<double>(
+        std::upper_bound(scores.begin(), scores.end(), score) - scores.begin());
+    percentiles.emplace(key, (low + high + 1) / (2 * n));
+  }
+  return percentiles;
+}
+
+}  // namespace
+
+std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
+                                         const std::vector<PairCandidate>& b,
+                                         double weight_b) {
+  const std::unordered_map<uint64_t, double> pa = ScorePercentiles(a);
+  const std::unordered_map<uint64_t, double> pb = ScorePercentiles(b);
+  std::vector<uint64_t> keys;
+  for (const auto& [key, p] : pa) keys.push_back(key);
+  for (const auto& [key, p] : pb) {
+    if (pa.count(key) == 0) keys.push_back(key);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<PairCandidate> combined;
+  combined.reserve(keys.size());
+  for (const uint64_t key : keys) {
+    const auto ia = pa.find(key);
+    const auto ib = pb.find(key);
+    const double score = (1 - weight_b) * (ia != pa.end() ? ia->second : 0.0) +
+                         weight_b * (ib != pb.end() ? ib->second : 0.0);
+    combined.push_back({static_cast<image_t>(key >> 32),
+                        static_cast<image_t>(key & 0xffffffffu),
+                        static_cast<float>(score)});
+  }
+  return combined;
 }
 
 std::vector<PairCandidate> GcnModelCandidates(
@@ -691,14 +755,27 @@ PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptivePairGeneratorSpec() {
   spec.add_options = [](OptionManager* manager,
                         AdaptiveGcnPairingOptions* options) {
     GcnModelPairGeneratorSpec().add_options(manager, &options->gcn);
+    KnnPairGeneratorSpec().add_options(manager, &options->knn);
     AddAdaptiveOptions(manager, &options->adaptive);
+    manager->AddDefaultOption(
+        "GcnMatching.similarity_weight",
+        &options->similarity_weight,
+        "adaptive: weight of embedding similarity in the prior (percentiles "
+        "of the GCN score and of the similarity); 0: the GCN score alone");
   };
   spec.create = [](const AdaptiveGcnPairingOptions& options,
                    const PairGeneratorContext& context)
       -> std::unique_ptr<PairGenerator> {
     std::vector<image_t> image_ids;
-    const std::vector<PairCandidate> candidates =
+    std::vector<PairCandidate> candidates =
         GcnModelCandidates(options.gcn, context.database, &image_ids);
+    if (options.similarity_weight > 0) {
+      std::vector<image_t> knn_image_ids;
+      candidates = CombinePriors(
+          candidates,
+          SimilarityCandidates(options.knn, context.database, &knn_image_ids),
+          options.similarity_weight);
+    }
     return std::make_unique<AdaptivePairGenerator>(
         options.adaptive, image_ids, candidates, "adaptive");
   };

@@ -205,8 +205,23 @@ struct AdaptiveGcnPairingOptions {
   // the model's, since the rounds, not a threshold, choose among them.
   GcnModelPairingOptions gcn;
   AdaptivePairingOptions adaptive;
+  // Weight of embedding similarity in the prior: with w > 0 the candidates
+  // are the union of the GCN's and the similarity kNN's (knn, k = 100),
+  // scored (1 - w) * the GCN score's percentile + w * the similarity's
+  // (CombinePriors); 0: the GCN score alone. The GCN's scores alone stop
+  // the rounds early: they rank many real pairs low (docs/adaptive.md).
+  double similarity_weight = 0.5;
+  KnnPairingOptions knn;
   void Check() const;
 };
+
+// Two candidate lists' scores as percentiles within their own list (ties
+// share their mean percentile), combined as (1 - weight_b) * a's +
+// weight_b * b's over the union of both (a pair missing from a list has
+// percentile 0 there); unordered pairs, sorted by (smaller id, larger id).
+std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
+                                         const std::vector<PairCandidate>& b,
+                                         double weight_b);
 
 // The candidates of the GCN model (threshold 0: every scored 1-hop pair).
 std::vector<PairCandidate> GcnModelCandidates(

@@ -99,6 +99,8 @@ int RunGcnAdaptiveSimulator(int argc, char** argv) {
   // Nothing is written beside the database.
   options.generators.Get<AdaptiveGcnPairingOptions>("adaptive")
       .gcn.use_vlad_cache = false;
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive")
+      .knn.descriptors.use_cache = false;
   options.generators.Get<GcnModelPairingOptions>("gcn").use_vlad_cache = false;
   options.generators.Get<GraphMatchPairingOptions>("graphmatch")
       .knn.descriptors.use_cache = false;

@@ -388,6 +388,58 @@ TEST(AdaptivePairGenerator, BadInputIsAnError) {
       "unknown image id");
 }
 
+TEST(CombinePriors, PercentilesOfBothListsOverTheirUnion) {
+  // a: (1,2) best, (1,3) and (2,3) tied, duplicates keep the higher score.
+  const std::vector<PairCandidate> a = {
+      {1, 2, 0.9f}, {3, 1, 0.2f}, {2, 3, 0.2f}, {2, 1, 0.1f}};
+  // b: (1,3) best, (3,4) only here.
+  const std::vector<PairCandidate> b = {{1, 3, 0.8f}, {4, 3, 0.5f}};
+  const std::vector<PairCandidate> c = CombinePriors(a, b, 0.5);
+  ASSERT_EQ(c.size(), 4u);
+  const auto score = [&](image_t i, image_t j) {
+    for (const PairCandidate& p : c) {
+      if (p.image_id1 == i && p.image_id2 == j) return p.score;
+    }
+    ADD_FAILURE() << "no pair " << i << "-" << j;
+    return -1.f;
+  };
+  // a: (1,3),(2,3) share percentile (1 + 2) / 2 / 3 = 1/2, (1,2) 1; b: (3,4)
+  // 1/2, (1,3) 1.
+  EXPECT_FLOAT_EQ(score(1, 2), 0.5f);
+  EXPECT_FLOAT_EQ(score(1, 3), 0.75f);
+  EXPECT_FLOAT_EQ(score(2, 3), 0.25f);
+  EXPECT_FLOAT_EQ(score(3, 4), 0.25f);
+  // Sorted by (smaller id, larger id), the same in any input order.
+  for (size_t i = 1; i < c.size(); ++i) {
+    EXPECT_LT(std::make_pair(c[i - 1].image_id1, c[i - 1].image_id2),
+              std::make_pair(c[i].image_id1, c[i].image_id2));
+  }
+  std::vector<PairCandidate> reversed(a.rbegin(), a.rend());
+  const std::vector<PairCandidate> again = CombinePriors(reversed, b, 0.5);
+  ASSERT_EQ(again.size(), c.size());
+  for (size_t i = 0; i < c.size(); ++i) {
+    EXPECT_EQ(again[i].image_id1, c[i].image_id1);
+    EXPECT_FLOAT_EQ(again[i].score, c[i].score);
+  }
+  // Weight 0: a's percentiles alone, in a's order.
+  const std::vector<PairCandidate> only_a = CombinePriors(a, b, 0.0);
+  EXPECT_FLOAT_EQ(only_a[0].score, 1.f);  // (1,2)
+}
+
+TEST(AdaptiveGcnPairingOptions, SimilarityWeightIsChecked) {
+  AdaptiveGcnPairingOptions options;
+  EXPECT_NO_THROW(options.Check());
+  options.similarity_weight = 1.5;
+  try {
+    options.Check();
+    ADD_FAILURE() << "no error";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("similarity_weight"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(AdaptivePairingOptions, CheckNamesTheField) {
   const auto expect =
       [](const std::function<void(AdaptivePairingOptions*)>& set,
