@@ -29,6 +29,7 @@
 #include "synthetic/pair_overlap.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/interrupt.h"
 #include "util/logging.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
@@ -452,6 +453,9 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
                  std::to_string(summary.num_verified_pairs) + " in " +
                  FormatSeconds(summary.matching_seconds));
   } catch (const Error& error) {
+    // An interruption is no result of the method: nothing is cached, the
+    // run stops, and the next one matches this method again.
+    if (PendingInterrupt() != 0) throw;
     run["status"] = "failed";
     run["message"] = std::string("matching: ") + error.what();
     Progress(name, method.spec + ": matching failed: " + error.what());
@@ -484,6 +488,7 @@ Json BenchmarkRunner::MapMethod(const SceneContext& scene,
     RunIncrementalMapping(
         Colmap(scene), JoinPaths(dir, "database.db"), sparse, mapping_options);
   } catch (const Error& error) {
+    if (PendingInterrupt() != 0) throw;  // mapped again by the next run
     // COLMAP 3.8's mapper exits 1 when it builds no model: for the tables
     // that is a result (0 registered, the paper's "Fail"), not an error.
     run["message"] = "mapper produced no model";
@@ -743,6 +748,8 @@ BenchmarkResults BenchmarkRunner::Run() {
     try {
       results.scenes.push_back(RunScene(specs[i]));
     } catch (const Error& error) {
+      // An interrupted run stops here; the cache keeps what was complete.
+      if (PendingInterrupt() != 0) throw;
       // One broken scene must not cost the others' results.
       SceneResult failed;
       failed.name = specs[i].name;

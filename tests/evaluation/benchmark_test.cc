@@ -208,6 +208,70 @@ TEST_F(GcnBenchmarkEndToEnd, SecondRunReadsTheCache) {
   EXPECT_EQ(methods, Methods());
 }
 
+// SIGTERM while a method is being matched (or mapped): the run stops with
+// 128 + 15, caches nothing for that method, starts no later method, and
+// the next run redoes the method to the uninterrupted result.
+TEST_F(GcnBenchmarkEndToEnd, InterruptedMethodIsNotCachedAndTheRunStops) {
+  const std::string out = JoinPaths(dir_->Path(), "interrupted");
+  ASSERT_EQ(RunShell("cp -a " + ShellQuote(Out()) + " " + ShellQuote(out)), 0);
+  const std::string scene = JoinPaths(out, kScene);
+  std::filesystem::remove_all(JoinPaths(scene, "knn-5"));
+  std::filesystem::remove_all(JoinPaths(scene, "oracle"));
+  const std::string log = JoinPaths(dir_->Path(), "interrupted.log");
+  // Waits for COLMAP to be matching knn:5's working copy, then sends
+  // SIGTERM to the benchmark (which forwards it); prints its exit status.
+  std::string status;
+  ASSERT_EQ(
+      RunShell(
+          "( exec " + ShellQuote(FrontendExe()) +
+              " gcn_benchmark --datasets synth:ordinary:10:7"
+              " --methods exhaustive,knn:5,oracle --output_path " +
+              ShellQuote(out) +
+              " --SiftExtraction.num_threads 2 --SiftMatching.num_threads 2"
+              " > " +
+              ShellQuote(log) +
+              " 2>&1 ) & pid=$!; "
+              "while kill -0 $pid 2>/dev/null && ! pgrep -f " +
+              // [m]: the pattern must not match this shell's command line.
+              ShellQuote("[m]atches_importer.*" +
+                         JoinPaths(scene, "knn-5/database.db.gcn-partial")) +
+              " >/dev/null; do sleep 0.02; done; kill -TERM $pid; wait $pid; "
+              "echo $?",
+          &status),
+      0);
+  EXPECT_EQ(StringTrim(status), "143") << ReadTextFile(log);
+  EXPECT_NE(ReadTextFile(log).find("interrupted (signal 15)"),
+            std::string::npos)
+      << ReadTextFile(log);
+  const std::string run = JoinPaths(scene, "knn-5/run.json");
+  if (ExistsFile(run)) {
+    // Interrupted while mapping: the matching is kept, the mapping is not.
+    const Json cached = ReadJsonFile(run);
+    EXPECT_EQ(cached.value("status", std::string()), "ok") << cached.dump();
+    EXPECT_FALSE(cached.contains("mapping_seconds")) << cached.dump();
+  }
+  EXPECT_FALSE(ExistsFile(JoinPaths(scene, "oracle")));
+
+  std::string output;
+  ASSERT_EQ(RunShell(ShellQuote(FrontendExe()) +
+                         " gcn_benchmark --datasets synth:ordinary:10:7"
+                         " --methods exhaustive,knn:5,oracle --output_path " +
+                         ShellQuote(out) +
+                         " --SiftExtraction.num_threads 2"
+                         " --SiftMatching.num_threads 2",
+                     &output),
+            0)
+      << output;
+  const Json again = ReadJsonFile(JoinPaths(out, "results.json"));
+  for (const Json& method : again.at("scenes").at(0).at("methods")) {
+    if (method.at("method").get<std::string>() != "knn:5") continue;
+    EXPECT_EQ(method.at("status").get<std::string>(), "ok");
+    EXPECT_EQ(method.at("tam"), Method("knn:5").at("tam"));
+    EXPECT_EQ(method.at("sfm").at("num_registered"),
+              Method("knn:5").at("sfm").at("num_registered"));
+  }
+}
+
 TEST_F(GcnBenchmarkEndToEnd, GroundTruthTriangulationAgreesWithOverlaps) {
   // The GT-camera label path (used for real scenes) on the synthetic
   // scene, whose exact overlaps are known.
