@@ -623,31 +623,29 @@ void AdaptiveGcnPairingOptions::Check() const {
 namespace {
 
 // Each unordered pair's percentile in (0, 1] within its list (the higher
-// score of a duplicate kept; ties share their mean percentile).
-std::unordered_map<uint64_t, double> ScorePercentiles(
+// score of a duplicate kept; ties share their mean percentile), by pair id.
+std::unordered_map<image_pair_t, double> ScorePercentiles(
     const std::vector<PairCandidate>& candidates) {
-  std::unordered_map<uint64_t, float> best;
+  std::unordered_map<image_pair_t, float> best;
   for (const PairCandidate& candidate : candidates) {
     if (candidate.image_id1 == candidate.image_id2) continue;
-    const uint64_t key = (static_cast<uint64_t>(std::min(candidate.image_id1,
-                                                         candidate.image_id2))
-                          << 32) |
-                         std::max(candidate.image_id1, candidate.image_id2);
-    const auto [it, inserted] = best.emplace(key, candidate.score);
+    const auto [it, inserted] = best.emplace(
+        ImagePairToPairId(candidate.image_id1, candidate.image_id2),
+        candidate.score);
     if (!inserted) it->second = std::max(it->second, candidate.score);
   }
   std::vector<float> scores;
   scores.reserve(best.size());
-  for (const auto& [key, score] : best) scores.push_back(score);
+  for (const auto& [pair_id, score] : best) scores.push_back(score);
   std::sort(scores.begin(), scores.end());
-  std::unordered_map<uint64_t, double> percentiles;
+  std::unordered_map<image_pair_t, double> percentiles;
   const double n = static_cast<double>(scores.size());
-  for (const auto& [key, score] : best) {
+  for (const auto& [pair_id, score] : best) {
     const double low = static_cast<double>(
         std::lower_bound(scores.begin(), scores.end(), score) - scores.begin());
     const double high = static_cast<double>(
         std::upper_bound(scores.begin(), scores.end(), score) - scores.begin());
-    percentiles.emplace(key, (low + high + 1) / (2 * n));
+    percentiles.emplace(pair_id, (low + high + 1) / (2 * n));
   }
   return percentiles;
 }
@@ -657,24 +655,24 @@ std::unordered_map<uint64_t, double> ScorePercentiles(
 std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
                                          const std::vector<PairCandidate>& b,
                                          double weight_b) {
-  const std::unordered_map<uint64_t, double> pa = ScorePercentiles(a);
-  const std::unordered_map<uint64_t, double> pb = ScorePercentiles(b);
-  std::vector<uint64_t> keys;
-  for (const auto& [key, p] : pa) keys.push_back(key);
-  for (const auto& [key, p] : pb) {
-    if (pa.count(key) == 0) keys.push_back(key);
+  const std::unordered_map<image_pair_t, double> pa = ScorePercentiles(a);
+  const std::unordered_map<image_pair_t, double> pb = ScorePercentiles(b);
+  std::vector<image_pair_t> pair_ids;
+  for (const auto& [pair_id, p] : pa) pair_ids.push_back(pair_id);
+  for (const auto& [pair_id, p] : pb) {
+    if (pa.count(pair_id) == 0) pair_ids.push_back(pair_id);
   }
-  std::sort(keys.begin(), keys.end());
+  // Pair ids order pairs by (smaller id, larger id).
+  std::sort(pair_ids.begin(), pair_ids.end());
   std::vector<PairCandidate> combined;
-  combined.reserve(keys.size());
-  for (const uint64_t key : keys) {
-    const auto ia = pa.find(key);
-    const auto ib = pb.find(key);
+  combined.reserve(pair_ids.size());
+  for (const image_pair_t pair_id : pair_ids) {
+    const auto ia = pa.find(pair_id);
+    const auto ib = pb.find(pair_id);
     const double score = (1 - weight_b) * (ia != pa.end() ? ia->second : 0.0) +
                          weight_b * (ib != pb.end() ? ib->second : 0.0);
-    combined.push_back({static_cast<image_t>(key >> 32),
-                        static_cast<image_t>(key & 0xffffffffu),
-                        static_cast<float>(score)});
+    const ImagePair pair = PairIdToImagePair(pair_id);
+    combined.push_back({pair.first, pair.second, static_cast<float>(score)});
   }
   return combined;
 }
