@@ -421,7 +421,7 @@ TEST(CombinePriors, PercentilesOfBothListsOverTheirUnion) {
     EXPECT_EQ(again[i].image_id1, c[i].image_id1);
     EXPECT_FLOAT_EQ(again[i].score, c[i].score);
   }
-  // Weight 0: a's percentiles alone, in a's order.
+  // Weight 0: a's percentiles alone; (1,2) sorts first.
   const std::vector<PairCandidate> only_a = CombinePriors(a, b, 0.0);
   EXPECT_FLOAT_EQ(only_a[0].score, 1.f);  // (1,2)
 }

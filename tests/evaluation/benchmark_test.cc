@@ -263,13 +263,16 @@ TEST_F(GcnBenchmarkEndToEnd, InterruptedMethodIsNotCachedAndTheRunStops) {
             0)
       << output;
   const Json again = ReadJsonFile(JoinPaths(out, "results.json"));
+  int found = 0;
   for (const Json& method : again.at("scenes").at(0).at("methods")) {
     if (method.at("method").get<std::string>() != "knn:5") continue;
+    ++found;
     EXPECT_EQ(method.at("status").get<std::string>(), "ok");
     EXPECT_EQ(method.at("tam"), Method("knn:5").at("tam"));
     EXPECT_EQ(method.at("sfm").at("num_registered"),
               Method("knn:5").at("sfm").at("num_registered"));
   }
+  EXPECT_EQ(found, 1);
 }
 
 TEST_F(GcnBenchmarkEndToEnd, GroundTruthTriangulationAgreesWithOverlaps) {
