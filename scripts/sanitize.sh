@@ -6,16 +6,17 @@
 #   scripts/sanitize.sh [extra ctest arguments]
 #
 # Left out (neither built nor run), for CI time (docs/reliability.md): the
-# four suites that run the real COLMAP through whole pipelines on generated
-# scenes (end-to-end, retrieval end-to-end, benchmark, synthetic-COLMAP);
-# most of their time is COLMAP's own work, which is not instrumented.
+# five suites that run the real COLMAP through whole pipelines on generated
+# scenes (end-to-end, retrieval end-to-end, benchmark, synthetic-COLMAP,
+# default model); most of their time is COLMAP's own work, which is not
+# instrumented.
 # SANITIZE_ALL=1 builds and runs them too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 BUILD=build-asan
 # Not built, not run (tests/CMakeLists.txt, COLMAP_GCN_SKIP_SUITES).
-SKIP_SUITES="e2e_test;retrieval_e2e_test;evaluation_benchmark_test;synthetic_colmap_test"
+SKIP_SUITES="e2e_test;retrieval_e2e_test;evaluation_benchmark_test;synthetic_colmap_test;default_model_e2e_test"
 if [ "${SANITIZE_ALL:-0}" = 1 ]; then
   SKIP_SUITES=""
 fi
