@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The unit tests under AddressSanitizer + UndefinedBehaviorSanitizer: builds
-# them (-O1 -g1, no benchmarks) into build-asan and runs them with ctest. Any ASan report (out-of-bounds access, use after free, leak) or UBSan
+# them (-O1 -g1, no benchmarks) into build-asan and runs them with ctest.
+# Any ASan report (out-of-bounds access, use after free, leak) or UBSan
 # report fails the test that triggered it.
 #
 #   scripts/sanitize.sh [extra ctest arguments]
@@ -9,8 +10,7 @@
 # five suites that run the real COLMAP through whole pipelines on generated
 # scenes (end-to-end, retrieval end-to-end, benchmark, synthetic-COLMAP,
 # default model); most of their time is COLMAP's own work, which is not
-# instrumented.
-# SANITIZE_ALL=1 builds and runs them too.
+# instrumented. SANITIZE_ALL=1 builds and runs them too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
