@@ -22,7 +22,7 @@ if [ "${SANITIZE_ALL:-0}" = 1 ]; then
 fi
 FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # -O1 -g1 (line tables: file and line in every report's stack) as ASan's
-# own docs advise; -O2 -g compiled twice as slowly for the same reports.
+# own docs advise; -O2 -g took twice the compile time (docs/reliability.md).
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
