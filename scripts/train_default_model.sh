@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Trains the default GCN model from scratch (docs/model_card.md): the real
-# labelled corpus (scripts/label_real_corpus.sh) -> VLAD embedding + GCN
-# with scale-free (query-scaled) node features -> model file.
+# labelled corpus (scripts/label_real_corpus.sh) -> VLAD embedding + a
+# small GCN on scale-free node features (scripts/corpus_folds.sh) -> model
+# file.
 #
 #   scripts/train_default_model.sh [CORPUS] [MODEL_PATH] [extra gcn_train flags...]
 #
@@ -43,6 +44,5 @@ VALIDATION="$(present "$VALIDATION_SCENES")"
   --scenes "$TRAIN,${TRAIN//,/+}" \
   --validation_scenes "$VALIDATION" \
   --output_path "$MODEL" \
-  --GcnTraining.feature_scaling query \
   "${GCN_TRAIN_FLAGS[@]}" \
   "$@"

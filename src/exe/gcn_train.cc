@@ -120,6 +120,13 @@ int RunGcnTrain(int argc, char** argv) {
                         QesFeatureScalingNames(),
                         "none: node features e_v - e_q; query: divided by "
                         "the query's RMS 1-hop distance (scale-free)");
+  manager.AddEnumOption("GcnTraining.structure_features",
+                        &training.structure_features,
+                        QesStructureFeaturesNames(),
+                        "none; reciprocal: append each node's kNN ranks "
+                        "to and from the query and its neighbour overlaps "
+                        "with the query; reciprocal_only: those and the "
+                        "query-scaled distance, without e_v - e_q");
   manager.AddEnumOption("GcnTraining.initialization",
                         &training.initialization,
                         GcnInitializationNames(),

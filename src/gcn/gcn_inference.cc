@@ -28,23 +28,33 @@ GcnScorer::GcnScorer(const GcnModel& model,
     : model_(model), embeddings_(embeddings) {
   model_.Check();
   model_.CheckEmbeddingDimension(static_cast<int>(embeddings.cols()));
-  const int d = model_.shape.input_dim;
+  const int d = model_.DifferenceDim();
+  const int input_dim = model_.shape.input_dim;
   const int h1 = model_.shape.gcn_dims[0];
-  const auto w1 = model_.params.GcnWeight(0);  // 2d x h1
-  // W1 reshaped to d x 2h1: [W_self | W_agg], rows scaled by s.
+  const auto w1 = model_.params.GcnWeight(0);  // 2 input_dim x h1
+  // The embedding rows of W1 reshaped to d x 2h1: [W_self | W_agg], rows
+  // scaled by s.
   RowMatrix<float> w(d, 2 * h1);
   w.leftCols(h1) = w1.topRows(d);
-  w.rightCols(h1) = w1.bottomRows(d);
-  offset_ =
-      (model_.input_shift.cwiseProduct(model_.input_scale).transpose() * w)
-          .transpose();
+  w.rightCols(h1) = w1.middleRows(input_dim, d);
+  offset_ = (model_.input_shift.head(d)
+                 .cwiseProduct(model_.input_scale.head(d))
+                 .transpose() *
+             w)
+                .transpose();
   for (int i = 0; i < d; ++i) w.row(i) *= model_.input_scale(i);
+  // The structural rows stay per node: [W_self | W_agg] of those inputs.
+  const int extra = input_dim - d;
+  structure_weight_.resize(extra, 2 * h1);
+  structure_weight_.leftCols(h1) = w1.middleRows(d, extra);
+  structure_weight_.rightCols(h1) = w1.middleRows(input_dim + d, extra);
   const long n = embeddings.rows();
-  projected_.resize(n, 2 * h1);
+  // Zero when the model reads no embedding differences (kReciprocalOnly).
+  projected_.setZero(n, 2 * h1);
   // In row blocks so that large collections can be projected in parallel.
   constexpr int kBlock = 4096;
   const int num_blocks = static_cast<int>((n + kBlock - 1) / kBlock);
-  ParallelFor(0, num_blocks, num_threads, [&](int block, int) {
+  ParallelFor(0, d > 0 ? num_blocks : 0, num_threads, [&](int block, int) {
     const long begin = static_cast<long>(block) * kBlock;
     const int rows = static_cast<int>(std::min<long>(kBlock, n - begin));
     Sgemm(RowMajorView(embeddings.data() + begin * d, rows, d, d),
@@ -108,8 +118,11 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
              projected_.data() + subgraph.nodes[g.columns[e]] * pstride + h1,
              out);
       }
-      Relu(h1, out);
     }
+    if (structure_weight_.rows() > 0) {
+      AddStructureTerms(subgraph, g, rows1, h);
+    }
+    Relu(static_cast<long>(rows1) * h1, h);
   }
 
   // Layers 2..L.
@@ -168,6 +181,33 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
       z += v * fc2(j);
     }
     (*logits)[i] = z;
+  }
+}
+
+void GcnScorer::AddStructureTerms(const QuerySubgraph& subgraph,
+                                  const AggregationMatrix& g,
+                                  int rows,
+                                  float* h) const {
+  const int extra = static_cast<int>(structure_weight_.rows());
+  const int d = model_.DifferenceDim();
+  const int h1 = model_.shape.gcn_dims[0];
+  // Standardised structural features S; G S is formed row by row below.
+  RowMatrix<float> x = QesStructureValues(
+      subgraph, embeddings_, model_.feature_scaling, model_.structure_features);
+  for (int j = 0; j < extra; ++j) {
+    x.col(j) = (x.col(j).array() - model_.input_shift(d + j)) *
+               model_.input_scale(d + j);
+  }
+  for (int i = 0; i < rows; ++i) {
+    float* out = h + static_cast<long>(i) * h1;
+    for (int j = 0; j < extra; ++j) {
+      float aggregated = 0.f;
+      for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+        aggregated += g.values[e] * x(g.columns[e], j);
+      }
+      Axpy(h1, x(i, j), structure_weight_.data() + j * 2 * h1, out);
+      Axpy(h1, aggregated, structure_weight_.data() + j * 2 * h1 + h1, out);
+    }
   }
 }
 

@@ -20,7 +20,9 @@ struct GcnWorkspace {
 };
 
 // The optimised test-time forward pass over one collection.
-//  * Layer 1 is folded: with X = (E_V - 1 e_q^T - 1 m^T) diag(s),
+//  * Layer 1 is folded for the embedding part of the node features (the
+//    few structural features are added per node): with
+//    X = (E_V - 1 e_q^T - 1 m^T) diag(s),
 //      [X || G X] W1 = P_a[V] - 1 (p_a(q) + c_a) + G P_b[V] - (G 1)(p_b(q) +
 //      c_b)
 //    where [P_a | P_b] = (E diag(s)) [W1_self | W1_agg] is computed ONCE for
@@ -44,10 +46,18 @@ class GcnScorer {
   const GcnModel& Model() const { return model_; }
 
  private:
+  // Adds [S || G S] W1_structure to the first `rows` rows of layer 1's
+  // pre-activations h (rows x h1).
+  void AddStructureTerms(const QuerySubgraph& subgraph,
+                         const AggregationMatrix& g,
+                         int rows,
+                         float* h) const;
+
   const GcnModel& model_;
   const EmbeddingMatrix& embeddings_;
   RowMatrix<float> projected_;                    // N x 2 h1: [P_a | P_b]
   Eigen::VectorXf offset_;                        // 2 h1: c = (m .* s)^T W1
+  RowMatrix<float> structure_weight_;             // extra x 2 h1
   std::vector<PackedMatrix> packed_gcn_weights_;  // layers 2..L
   PackedMatrix packed_fc1_weight_;
 };

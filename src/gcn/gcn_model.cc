@@ -58,6 +58,19 @@ void GcnModel::Check() const {
                ", expected ",
                shape.input_dim);
   }
+  const bool differences = QesUsesEmbeddingDifferences(structure_features);
+  if (differences ? DifferenceDim() < 1
+                  : shape.input_dim != QesStructureDim(structure_features)) {
+    ThrowError("GCN network input ",
+               shape.input_dim,
+               " does not fit ",
+               QesStructureFeaturesName(structure_features),
+               " structural features",
+               differences ? " after the embedding differences" : "");
+  }
+  if (EmbeddingDim() < 1) {
+    ThrowError("GCN model reads ", EmbeddingDim(), "-dimensional embeddings");
+  }
   if (!(params.Shape() == shape) ||
       params.Size() != GcnParameterLayout(shape).size) {
     ThrowError("GCN parameters do not match the network shape");
@@ -65,9 +78,9 @@ void GcnModel::Check() const {
 }
 
 void GcnModel::CheckEmbeddingDimension(int dim) const {
-  if (dim != shape.input_dim) {
+  if (dim != EmbeddingDim()) {
     ThrowError("the GCN model expects ",
-               shape.input_dim,
+               EmbeddingDim(),
                "-dimensional embeddings (type '",
                embedding.type,
                "') but got ",
@@ -79,7 +92,8 @@ void GcnModel::CheckEmbeddingDimension(int dim) const {
 RowMatrix<float> GcnModel::NodeFeatures(
     const QuerySubgraph& subgraph, const EmbeddingMatrix& embeddings) const {
   CheckEmbeddingDimension(static_cast<int>(embeddings.cols()));
-  RowMatrix<float> x = QesFeatures(subgraph, embeddings, feature_scaling);
+  RowMatrix<float> x = QesNodeFeatures(
+      subgraph, embeddings, feature_scaling, structure_features);
   for (int i = 0; i < x.rows(); ++i) {
     x.row(i) = ((x.row(i) - input_shift.transpose()).array() *
                 input_scale.transpose().array())
@@ -98,7 +112,7 @@ GcnModel InitializeGcnModel(const GcnShape& shape,
   model.input_shift = Eigen::VectorXf::Zero(shape.input_dim);
   model.input_scale = Eigen::VectorXf::Ones(shape.input_dim);
   model.params = GcnParameters<float>(shape);
-  model.embedding.dim = shape.input_dim;
+  model.embedding.dim = model.EmbeddingDim();
 
   std::mt19937 rng(seed);
   auto xavier = [&rng](float* data, int fan_in, int fan_out) {
@@ -122,7 +136,13 @@ GcnModel InitializeGcnModel(const GcnShape& shape,
 
 void InitializeDistancePrior(GcnModel* model, float other_scale) {
   const GcnShape& shape = model->shape;
-  const int d = shape.input_dim;
+  const int d = model->DifferenceDim();
+  if (d == 0) {
+    ThrowError(
+        "the distance prior needs the embedding differences as node "
+        "features, not only ",
+        QesStructureFeaturesName(model->structure_features));
+  }
   const int num_layers = shape.NumGcnLayers();
   bool fits = num_layers >= 2 && shape.gcn_dims[0] >= 2 * d &&
               shape.fc_dim >= num_layers;
@@ -143,7 +163,7 @@ void InitializeDistancePrior(GcnModel* model, float other_scale) {
 
   // Layer 1: units [0, D) = relu(x), [D, 2D) = relu(-x).
   {
-    auto w = params.GcnWeight(0);  // rows: [self (D) | aggregated (D)]
+    auto w = params.GcnWeight(0);  // rows: [self | aggregated] inputs
     w.leftCols(2 * d).setZero();
     for (int j = 0; j < d; ++j) {
       w(j, j) = 1.f;

@@ -162,6 +162,10 @@ struct GcnModel {
   GcnAggregation aggregation = GcnAggregation::kSymmetric;
   // Per-query scaling of the node features, before the standardisation.
   QesFeatureScaling feature_scaling = QesFeatureScaling::kNone;
+  // Structural node features: the network input is [x_v - x_q | structure],
+  // input_dim = DifferenceDim() + QesStructureDim(structure_features), where
+  // DifferenceDim() is the embedding dimension D, or 0 for kReciprocalOnly.
+  QesStructureFeatures structure_features = QesStructureFeatures::kNone;
   // Fixed input standardisation x' = (x - input_shift) .* input_scale applied
   // to the QES node features (replaces gcn_clustering's BatchNorm1d without
   // affine; estimated once from training subgraphs). Size input_dim.
@@ -173,6 +177,17 @@ struct GcnModel {
 
   // Throws Error if the sizes are inconsistent.
   void Check() const;
+  // Number of network inputs that are embedding differences x_v - x_q.
+  int DifferenceDim() const {
+    return QesUsesEmbeddingDifferences(structure_features)
+               ? shape.input_dim - QesStructureDim(structure_features)
+               : 0;
+  }
+  // Dimension D of the embeddings the model reads.
+  int EmbeddingDim() const {
+    return QesUsesEmbeddingDifferences(structure_features) ? DifferenceDim()
+                                                           : embedding.dim;
+  }
   // Throws a one-line Error unless embeddings of dimension `dim` fit.
   void CheckEmbeddingDimension(int dim) const;
   // Standardised node features of a QES.
@@ -190,7 +205,8 @@ GcnModel InitializeGcnModel(const GcnShape& shape,
 // The "distance prior" initialisation (docs/gcn.md): the network starts as
 // the context-aware distance classifier
 //   logit(v) = -(d + G d + G^2 d + ... + G^(L-1) d)(v),
-//   d(v) = mean_j |x_v - x_q|_j over the D standardised feature dimensions,
+//   d(v) = mean_j |x_v - x_q|_j over the D standardised embedding dimensions
+//   (structural features start unused),
 // with G the model's aggregation (row-normalised: neighbour means) and L
 // the number of graph convolutions: layer 1 computes [relu(x), relu(-x)],
 // layer 2 the mean (d) and its aggregate (G d), every later layer passes

@@ -200,6 +200,14 @@ void GcnTrainingOptions::Check() const {
   qes.Check();
   test_qes.Check();
   CHECK_OPTION_GE(prior_other_scale, 0.f);
+  if (initialization == GcnInitialization::kDistancePrior &&
+      !QesUsesEmbeddingDifferences(structure_features)) {
+    internal::ThrowOptionError(
+        &structure_features,
+        "structure_features",
+        "keep the embedding differences with the distance prior",
+        QesStructureFeaturesName(structure_features));
+  }
   CHECK_OPTION_GT(learning_rate, 0.0);
   CHECK_OPTION_GE(momentum, 0.0);
   CHECK_OPTION_GE(weight_decay, 0.0);
@@ -309,9 +317,14 @@ GcnModel GcnTrainer::Train(
   if (train_samples.empty()) ThrowError("no training samples");
 
   GcnShape shape = o.shape;
-  shape.input_dim = dim;
+  const int differences =
+      QesUsesEmbeddingDifferences(o.structure_features) ? dim : 0;
+  const int input_dim = differences + QesStructureDim(o.structure_features);
+  shape.input_dim = input_dim;
   GcnModel model = InitializeGcnModel(shape, o.aggregation, o.seed);
   model.feature_scaling = o.feature_scaling;
+  model.structure_features = o.structure_features;
+  model.embedding.dim = dim;
   const bool prior = o.initialization == GcnInitialization::kDistancePrior;
   BuilderPool pool(prepared, threads);
 
@@ -329,16 +342,17 @@ GcnModel GcnTrainer::Train(
           QuerySubgraph subgraph;
           pool.Get(t, sampled[s].scene).Build(sampled[s].query, &subgraph);
           const Eigen::MatrixXd xd =
-              QesFeatures(subgraph,
-                          prepared[sampled[s].scene].scene->embeddings,
-                          o.feature_scaling)
+              QesNodeFeatures(subgraph,
+                              prepared[sampled[s].scene].scene->embeddings,
+                              o.feature_scaling,
+                              o.structure_features)
                   .cast<double>();
           sums[s] = xd.colwise().sum().transpose();
           squares[s] = xd.array().square().colwise().sum().transpose();
           counts[s] = xd.rows();
         });
-    Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim);
-    Eigen::VectorXd square = Eigen::VectorXd::Zero(dim);
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(input_dim);
+    Eigen::VectorXd square = Eigen::VectorXd::Zero(input_dim);
     int64_t count = 0;
     for (size_t s = 0; s < sampled.size(); ++s) {
       if (counts[s] == 0) continue;
@@ -346,21 +360,24 @@ GcnModel GcnTrainer::Train(
       square += squares[s];
       count += counts[s];
     }
+    auto standardize = [&](int j) {
+      const double mean = sum(j) / count;
+      const double sd =
+          std::sqrt(std::max(0.0, square(j) / count - mean * mean));
+      model.input_shift(j) = static_cast<float>(mean);
+      model.input_scale(j) = sd > 1e-8 ? static_cast<float>(1.0 / sd) : 1.f;
+    };
     if (count > 0 && prior) {
-      // One scale for all dimensions and no shift: the prior's d(v) is then
-      // the L1 distance between the embeddings (up to the scale).
-      const double rms = std::sqrt(square.sum() / (count * dim));
-      model.input_scale.setConstant(rms > 1e-12 ? static_cast<float>(1.0 / rms)
-                                                : 1.f);
+      // One scale for all embedding dimensions and no shift: the prior's
+      // d(v) is then the L1 distance between the embeddings (up to the
+      // scale). Structural features are standardised one by one.
+      const double rms = std::sqrt(square.head(differences).sum() /
+                                   (static_cast<double>(count) * differences));
+      model.input_scale.head(differences)
+          .setConstant(rms > 1e-12 ? static_cast<float>(1.0 / rms) : 1.f);
+      for (int j = differences; j < input_dim; ++j) standardize(j);
     } else if (count > 0) {
-      const Eigen::VectorXd mean = sum / count;
-      const Eigen::VectorXd var =
-          (square / count - mean.cwiseProduct(mean)).cwiseMax(0.0);
-      for (int j = 0; j < dim; ++j) {
-        const double sd = std::sqrt(var(j));
-        model.input_shift(j) = static_cast<float>(mean(j));
-        model.input_scale(j) = sd > 1e-8 ? static_cast<float>(1.0 / sd) : 1.f;
-      }
+      for (int j = 0; j < input_dim; ++j) standardize(j);
     }
     if (prior) {
       InitializeDistancePrior(&model, o.prior_other_scale);
@@ -596,6 +613,10 @@ GcnModel GcnTrainer::Train(
     if (o.feature_scaling != QesFeatureScaling::kNone) {
       notes << "; " << QesFeatureScalingName(o.feature_scaling)
             << " feature scaling";
+    }
+    if (o.structure_features != QesStructureFeatures::kNone) {
+      notes << "; " << QesStructureFeaturesName(o.structure_features)
+            << " structural features";
     }
     if (best_epoch > 0 && !val_samples.empty()) {
       notes << " (val " << FormatStats(history_[best_epoch - 1].validation)

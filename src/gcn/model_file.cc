@@ -134,7 +134,7 @@ std::string SerializeGcnModel(const GcnModel& model) {
   {
     Writer s;
     s.PutString(model.embedding.type);
-    s.Put<int32_t>(model.shape.input_dim);
+    s.Put<int32_t>(model.EmbeddingDim());
     s.PutString(model.embedding.blob);
     payload.PutSection("EMBD", s.Bytes());
   }
@@ -152,6 +152,11 @@ std::string SerializeGcnModel(const GcnModel& model) {
     Writer s;
     s.Put<int32_t>(static_cast<int32_t>(model.feature_scaling));
     payload.PutSection("FEAT", s.Bytes());
+  }
+  if (model.structure_features != QesStructureFeatures::kNone) {
+    Writer s;
+    s.Put<int32_t>(static_cast<int32_t>(model.structure_features));
+    payload.PutSection("STRC", s.Bytes());
   }
   {
     Writer s;
@@ -289,31 +294,38 @@ GcnModel DeserializeGcnModel(const std::string& bytes,
     model.aggregation = static_cast<GcnAggregation>(aggregation);
     r.ExpectEnd();
   }
-  if (sections.count("FEAT")) {
-    Reader r = section("FEAT");
-    const int32_t scaling = r.Get<int32_t>();
-    if (scaling != 0 && scaling != 1) {
-      ThrowError("GCN model file ",
-                 source,
-                 " has an unknown feature scaling ",
-                 scaling);
+  // Optional one-value sections: absent = 0; values above `max` unknown.
+  auto optional_enum = [&](const char* tag, int max, const char* what) {
+    if (!sections.count(tag)) return 0;
+    Reader r = section(tag);
+    const int32_t value = r.Get<int32_t>();
+    if (value < 0 || value > max) {
+      ThrowError(
+          "GCN model file ", source, " has an unknown ", what, " ", value);
     }
-    model.feature_scaling = static_cast<QesFeatureScaling>(scaling);
     r.ExpectEnd();
-  }
+    return static_cast<int>(value);
+  };
+  model.feature_scaling = static_cast<QesFeatureScaling>(
+      optional_enum("FEAT", 1, "feature scaling"));
+  model.structure_features = static_cast<QesStructureFeatures>(
+      optional_enum("STRC", 2, "structural node feature set"));
   {
     Reader r = section("EMBD");
     model.embedding.type = r.GetString();
     model.embedding.dim = r.Get<int32_t>();
     model.embedding.blob = r.GetString();
     r.ExpectEnd();
-    if (model.embedding.dim != model.shape.input_dim) {
+    if (model.embedding.dim != model.EmbeddingDim()) {
       ThrowError("GCN model file ",
                  source,
                  ": embedding dimension ",
                  model.embedding.dim,
-                 " differs from the network input ",
-                 model.shape.input_dim);
+                 " does not fit the network input ",
+                 model.shape.input_dim,
+                 " with ",
+                 QesStructureFeaturesName(model.structure_features),
+                 " structural features");
     }
   }
   {

@@ -17,12 +17,16 @@ namespace colmap_gcn {
 //                         char[4] tag, u64 length L, u8[L] body
 //       24+P   u64      FNV-1a 64 checksum of the payload bytes
 //
-// Sections (all required except NOTE; unknown tags are skipped so later
-// versions can add sections):
+// Sections (all required except FEAT, STRC and NOTE; unknown tags are
+// skipped so later versions can add sections):
 //   EMBD  embedding configuration: str type, i32 D, str blob (opaque bytes)
 //   NETS  network shape: i32 input_dim, i32 L, i32 gcn_dims[L], i32 fc_dim,
 //         i32 aggregation (0 symmetric, 1 row-normalised)
-//   NORM  input standardisation: f32 shift[D], f32 scale[D]
+//   FEAT  i32 node feature scaling (1 query scale); absent = none
+//   STRC  i32 structural node features (1 k-reciprocal, 2 k-reciprocal
+//         only); absent = none.
+//         input_dim = D + 4 (1) or 5 (2, without D)
+//   NORM  input standardisation: f32 shift[input_dim], f32 scale[input_dim]
 //   WGTS  u64 count, f32 parameters[count] in GcnParameterLayout order
 //   INFO  f32 tau_mo, f32 tau_ct, i32 test_k1, i32 test_k2, i32 test_u,
 //         f32 threshold

@@ -79,7 +79,10 @@ AggregationMatrix ComputeAggregation(const QuerySubgraph& subgraph,
 }
 
 QesBuilder::QesBuilder(const KnnGraph& knn, const QesOptions& options)
-    : knn_(knn), options_(options), local_index_(knn.NumImages(), -1) {
+    : knn_(knn),
+      options_(options),
+      local_index_(knn.NumImages(), -1),
+      near_query_(knn.NumImages(), 0) {
   options_.Check();
   if (knn_.K() < options_.RequiredK()) {
     ThrowError("the kNN graph has ",
@@ -140,9 +143,57 @@ void QesBuilder::Build(int query, QuerySubgraph* subgraph) {
     s.adjacency_offsets[i + 1] += s.adjacency_offsets[i];
   }
 
+  ComputeReciprocalFeatures(&s);
+
   // Reset the scratch map.
   local_index_[query] = -1;
   for (int index : s.nodes) local_index_[index] = -1;
+}
+
+void QesBuilder::ComputeReciprocalFeatures(QuerySubgraph* subgraph) {
+  QuerySubgraph& s = *subgraph;
+  const int k = knn_.K();
+  const int query = s.query;
+  const int32_t* query_row = knn_.indices.data() + query * k;
+  constexpr int kSmall = 5;
+  constexpr int kLarge = 10;
+  const int small = std::min(kSmall, k);
+  const int large = std::min(kLarge, k);
+  // Bit 1: in {q} + small nearest of q; bit 2: in {q} + large nearest.
+  near_query_[query] = 3;
+  for (int j = 0; j < large; ++j)
+    near_query_[query_row[j]] |= j < small ? 3 : 2;
+  const float log_k = std::log(1.f + static_cast<float>(k));
+  auto rank_of = [k](const int32_t* row, int index) {
+    for (int j = 0; j < k; ++j) {
+      if (row[j] == index) return j;
+    }
+    return k;
+  };
+  const int n = s.NumNodes();
+  s.reciprocal.resize(static_cast<size_t>(n) * kQesReciprocalDim);
+  for (int i = 0; i < n; ++i) {
+    const int node = s.nodes[i];
+    const int32_t* row = knn_.indices.data() + node * k;
+    // Overlaps of {q} + nearest of q with {v} + nearest of v.
+    int common_small = (near_query_[node] & 1) ? 1 : 0;
+    int common_large = (near_query_[node] & 2) ? 1 : 0;
+    for (int j = 0; j < large; ++j) {
+      if (j < small && (near_query_[row[j]] & 1)) ++common_small;
+      if (near_query_[row[j]] & 2) ++common_large;
+    }
+    float* out =
+        s.reciprocal.data() + static_cast<size_t>(i) * kQesReciprocalDim;
+    out[0] =
+        std::log(1.f + static_cast<float>(rank_of(query_row, node))) / log_k;
+    out[1] = std::log(1.f + static_cast<float>(rank_of(row, query))) / log_k;
+    out[2] = static_cast<float>(common_small) /
+             static_cast<float>(2 * (small + 1) - common_small);
+    out[3] = static_cast<float>(common_large) /
+             static_cast<float>(2 * (large + 1) - common_large);
+  }
+  near_query_[query] = 0;
+  for (int j = 0; j < large; ++j) near_query_[query_row[j]] = 0;
 }
 
 QuerySubgraph BuildQuerySubgraph(const KnnGraph& knn,
@@ -169,6 +220,42 @@ const EnumNames<QesFeatureScaling>& QesFeatureScalingNames() {
       {"none", QesFeatureScaling::kNone},
       {"query", QesFeatureScaling::kQueryScale}};
   return names;
+}
+
+const char* QesStructureFeaturesName(QesStructureFeatures features) {
+  switch (features) {
+    case QesStructureFeatures::kNone:
+      return "none";
+    case QesStructureFeatures::kReciprocal:
+      return "reciprocal";
+    case QesStructureFeatures::kReciprocalOnly:
+      return "reciprocal_only";
+  }
+  return "unknown";
+}
+
+const EnumNames<QesStructureFeatures>& QesStructureFeaturesNames() {
+  static const EnumNames<QesStructureFeatures> names = {
+      {"none", QesStructureFeatures::kNone},
+      {"reciprocal", QesStructureFeatures::kReciprocal},
+      {"reciprocal_only", QesStructureFeatures::kReciprocalOnly}};
+  return names;
+}
+
+int QesStructureDim(QesStructureFeatures features) {
+  switch (features) {
+    case QesStructureFeatures::kNone:
+      return 0;
+    case QesStructureFeatures::kReciprocal:
+      return kQesReciprocalDim;
+    case QesStructureFeatures::kReciprocalOnly:
+      return kQesReciprocalDim + 1;
+  }
+  return 0;
+}
+
+bool QesUsesEmbeddingDifferences(QesStructureFeatures features) {
+  return features != QesStructureFeatures::kReciprocalOnly;
 }
 
 float QesFeatureFactor(const QuerySubgraph& subgraph,
@@ -203,6 +290,57 @@ QesFeatures(const QuerySubgraph& subgraph,
         embeddings.row(subgraph.nodes[i]) - embeddings.row(subgraph.query);
   }
   if (factor != 1.f) x *= factor;
+  return x;
+}
+
+Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+QesStructureValues(const QuerySubgraph& subgraph,
+                   const EmbeddingMatrix& embeddings,
+                   QesFeatureScaling scaling,
+                   QesStructureFeatures structure) {
+  const int n = subgraph.NumNodes();
+  const int dim = QesStructureDim(structure);
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x(n,
+                                                                          dim);
+  if (dim == 0) return x;
+  THROW_CHECK(subgraph.reciprocal.size() ==
+              static_cast<size_t>(n) * kQesReciprocalDim);
+  int column = 0;
+  if (structure == QesStructureFeatures::kReciprocalOnly) {
+    const float factor = QesFeatureFactor(subgraph, embeddings, scaling) /
+                         std::sqrt(static_cast<float>(embeddings.cols()));
+    for (int i = 0; i < n; ++i) {
+      x(i, 0) = factor * (embeddings.row(subgraph.nodes[i]) -
+                          embeddings.row(subgraph.query))
+                             .norm();
+    }
+    column = 1;
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < kQesReciprocalDim; ++j) {
+      x(i, column + j) =
+          subgraph.reciprocal[static_cast<size_t>(i) * kQesReciprocalDim + j];
+    }
+  }
+  return x;
+}
+
+Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+QesNodeFeatures(const QuerySubgraph& subgraph,
+                const EmbeddingMatrix& embeddings,
+                QesFeatureScaling scaling,
+                QesStructureFeatures structure) {
+  if (structure == QesStructureFeatures::kNone) {
+    return QesFeatures(subgraph, embeddings, scaling);
+  }
+  const auto values =
+      QesStructureValues(subgraph, embeddings, scaling, structure);
+  if (!QesUsesEmbeddingDifferences(structure)) return values;
+  const int d = static_cast<int>(embeddings.cols());
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x(
+      subgraph.NumNodes(), d + values.cols());
+  x.leftCols(d) = QesFeatures(subgraph, embeddings, scaling);
+  x.rightCols(values.cols()) = values;
   return x;
 }
 

@@ -54,6 +54,38 @@ const char* QesFeatureScalingName(QesFeatureScaling scaling);
 // "none", "query": the names of --GcnTraining.feature_scaling.
 const EnumNames<QesFeatureScaling>& QesFeatureScalingNames();
 
+// Scale-free structural node features that a QES can add to the embedding
+// differences: how the node and the query see each other in the kNN graph.
+// Ranks and neighbour overlaps mean the same in every collection, whatever
+// its embedding distances (the k-reciprocal evidence of re-ranking in
+// image retrieval).
+enum class QesStructureFeatures : int {
+  kNone = 0,
+  // Per node v of query q, kQesReciprocalDim values in [0, 1]:
+  //   log(1 + r(q -> v)) / log(1 + K), r(q -> v) the rank of v in q's kNN
+  //     list (0 = nearest; K when absent), K the kNN graph's K;
+  //   log(1 + r(v -> q)) / log(1 + K), the same seen from v;
+  //   Jaccard overlap of {q} + 5 nearest of q and {v} + 5 nearest of v;
+  //   the same with the 10 nearest (both capped at K).
+  kReciprocal = 1,
+  // Only scale-free numbers, without x_v - x_q: the node's distance to the
+  // query |c (x_v - x_q)| / sqrt(D) (c the QesFeatureFactor), then the
+  // kReciprocal values. Nothing is left that a network could fit to one
+  // collection's embedding directions.
+  kReciprocalOnly = 2,
+};
+
+constexpr int kQesReciprocalDim = 4;
+
+const char* QesStructureFeaturesName(QesStructureFeatures features);
+// "none", "reciprocal", "reciprocal_only": the names of
+// --GcnTraining.structure_features.
+const EnumNames<QesStructureFeatures>& QesStructureFeaturesNames();
+// Number of structural values per node: 0, kQesReciprocalDim or one more.
+int QesStructureDim(QesStructureFeatures features);
+// Whether the node features start with x_v - x_q (all but kReciprocalOnly).
+bool QesUsesEmbeddingDifferences(QesStructureFeatures features);
+
 // The nodes and undirected edges of one QES. Nodes are collection indices;
 // nodes[0, num_one_hop) are the 1-hop nodes in kNN order, the rest the 2-hop
 // nodes in discovery order (1-hop node by 1-hop node, each in kNN order).
@@ -65,6 +97,9 @@ struct QuerySubgraph {
   std::vector<int> nodes;
   std::vector<int> adjacency_offsets;  // size NumNodes() + 1
   std::vector<int> adjacency;          // local node indices
+  // NumNodes() x kQesReciprocalDim, row-major: the kReciprocal features of
+  // every node, filled by QesBuilder::Build.
+  std::vector<float> reciprocal;
 
   int NumNodes() const { return static_cast<int>(nodes.size()); }
   int Degree(int local) const {
@@ -99,9 +134,12 @@ class QesBuilder {
   void Build(int query, QuerySubgraph* subgraph);
 
  private:
+  void ComputeReciprocalFeatures(QuerySubgraph* subgraph);
+
   const KnnGraph& knn_;
   const QesOptions options_;
   std::vector<int> local_index_;  // collection index -> local index or -1
+  std::vector<int> near_query_;   // collection index -> overlap set flags
 };
 
 QuerySubgraph BuildQuerySubgraph(const KnnGraph& knn,
@@ -122,6 +160,21 @@ Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
 QesFeatures(const QuerySubgraph& subgraph,
             const EmbeddingMatrix& embeddings,
             QesFeatureScaling scaling = QesFeatureScaling::kNone);
+
+// The QesStructureDim(structure) structural values of every node (rows).
+Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+QesStructureValues(const QuerySubgraph& subgraph,
+                   const EmbeddingMatrix& embeddings,
+                   QesFeatureScaling scaling,
+                   QesStructureFeatures structure);
+
+// The network's raw node features: QesFeatures (unless kReciprocalOnly),
+// followed by the QesStructureValues.
+Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+QesNodeFeatures(const QuerySubgraph& subgraph,
+                const EmbeddingMatrix& embeddings,
+                QesFeatureScaling scaling,
+                QesStructureFeatures structure);
 
 // The factor every node feature of the QES is multiplied by: 1, or
 // 1 / sigma_q (1 when the 1-hop nodes coincide with the query).

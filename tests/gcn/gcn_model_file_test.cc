@@ -1,5 +1,7 @@
 #include "gcn/model_file.h"
 
+#include <cstring>
+
 #include <gtest/gtest.h>
 
 #include "gcn/gcn_test_utils.h"
@@ -25,10 +27,26 @@ GcnModel MakeModel() {
   return model;
 }
 
+// A model with structural node features reading `dim`-D embeddings.
+GcnModel MakeStructureModel(QesStructureFeatures structure, int dim) {
+  const int differences = QesUsesEmbeddingDifferences(structure) ? dim : 0;
+  GcnModel model = InitializeGcnModel(
+      test::SmallShape(differences + QesStructureDim(structure)),
+      GcnAggregation::kRowNormalized,
+      4);
+  test::RandomizeModel(&model, 8);
+  model.embedding.type = "vlad";
+  model.structure_features = structure;
+  model.embedding.dim = dim;
+  EXPECT_EQ(model.EmbeddingDim(), dim);
+  return model;
+}
+
 void ExpectEqual(const GcnModel& a, const GcnModel& b) {
   EXPECT_TRUE(a.shape == b.shape);
   EXPECT_EQ(a.aggregation, b.aggregation);
   EXPECT_EQ(a.feature_scaling, b.feature_scaling);
+  EXPECT_EQ(a.structure_features, b.structure_features);
   EXPECT_EQ(a.input_shift, b.input_shift);
   EXPECT_EQ(a.input_scale, b.input_scale);
   EXPECT_EQ(a.params.Values(), b.params.Values());
@@ -42,6 +60,17 @@ void ExpectEqual(const GcnModel& a, const GcnModel& b) {
   EXPECT_EQ(a.info.test_u, b.info.test_u);
   EXPECT_EQ(a.info.threshold, b.info.threshold);
   EXPECT_EQ(a.info.notes, b.info.notes);
+}
+
+// Recomputes the payload checksum of an edited model file.
+void Reseal(std::string* bytes) {
+  uint64_t payload_size = 0;
+  std::memcpy(&payload_size, bytes->data() + 16, sizeof(payload_size));
+  const uint64_t checksum = Fnv1a64(bytes->data() + 24, payload_size);
+  bytes->replace(24 + payload_size,
+                 sizeof(checksum),
+                 reinterpret_cast<const char*>(&checksum),
+                 sizeof(checksum));
 }
 
 // The Error message, checked to be a single line.
@@ -79,6 +108,56 @@ TEST(GcnModelFile, FeatureScalingRoundTripAndOnlyWrittenWhenUsed) {
   const std::string scaled = SerializeGcnModel(model);
   EXPECT_NE(scaled.find("FEAT"), std::string::npos);
   ExpectEqual(model, DeserializeGcnModel(scaled, "x"));
+}
+
+TEST(GcnModelFile, StructureFeaturesRoundTripAndDimensions) {
+  const GcnModel model =
+      MakeStructureModel(QesStructureFeatures::kReciprocal, 12);
+  EXPECT_EQ(model.shape.input_dim, 12 + kQesReciprocalDim);
+  const std::string bytes = SerializeGcnModel(model);
+  EXPECT_NE(bytes.find("STRC"), std::string::npos);
+  const GcnModel loaded = DeserializeGcnModel(bytes, "x");
+  ExpectEqual(model, loaded);
+  // The embeddings it reads are 12-D, not the network's 16 inputs.
+  EXPECT_NO_THROW(loaded.CheckEmbeddingDimension(12));
+  EXPECT_THROW(loaded.CheckEmbeddingDimension(16), Error);
+  // Without the structure section the same network does not fit its
+  // embeddings: refused instead of read as 16-D embeddings.
+  GcnModel plain = model;
+  plain.structure_features = QesStructureFeatures::kNone;
+  plain.embedding.dim = 16;
+  std::string edited = SerializeGcnModel(plain);
+  const size_t embd = edited.find("EMBD");
+  ASSERT_NE(embd, std::string::npos);
+  // EMBD body: str type ("vlad": u64 length + 4 bytes), then i32 D.
+  const size_t dim_offset = embd + 4 + 8 + 8 + 4;
+  ASSERT_EQ(edited[dim_offset], 16);
+  edited[dim_offset] = 12;
+  Reseal(&edited);
+  EXPECT_NE(ErrorOf(edited).find("embedding dimension 12 does not fit the "
+                                 "network input 16 with none structural "
+                                 "features"),
+            std::string::npos);
+}
+
+TEST(GcnModelFile, StructureOnlyModelKeepsItsEmbeddingDimension) {
+  // Five structural inputs, no embedding differences, 12-D embeddings.
+  const GcnModel model =
+      MakeStructureModel(QesStructureFeatures::kReciprocalOnly, 12);
+  EXPECT_EQ(model.shape.input_dim, 1 + kQesReciprocalDim);
+  EXPECT_EQ(model.DifferenceDim(), 0);
+  std::string bytes = SerializeGcnModel(model);
+  const GcnModel loaded = DeserializeGcnModel(bytes, "x");
+  ExpectEqual(model, loaded);
+  EXPECT_NO_THROW(loaded.CheckEmbeddingDimension(12));
+  EXPECT_THROW(loaded.CheckEmbeddingDimension(5), Error);
+  // An unknown set is refused by name.
+  const size_t strc = bytes.find("STRC");
+  ASSERT_NE(strc, std::string::npos);
+  bytes[strc + 4 + 8] = 3;
+  Reseal(&bytes);
+  EXPECT_NE(ErrorOf(bytes).find("unknown structural node feature set 3"),
+            std::string::npos);
 }
 
 TEST(GcnModelFile, DefaultShapeRoundTrip) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -17,15 +18,23 @@ struct Fixture {
   GcnModel model;
 };
 
-Fixture MakeFixture(const GcnShape& shape,
-                    GcnAggregation aggregation,
-                    int knn_k) {
+Fixture MakeFixture(
+    const GcnShape& shape,
+    GcnAggregation aggregation,
+    int knn_k,
+    QesStructureFeatures structure = QesStructureFeatures::kNone) {
   Fixture f;
   std::vector<int> clusters;
-  f.embeddings = test::ClusteredEmbeddings(
-      {12, 7, 20, 9, 15}, shape.input_dim, 0.4f, 11, &clusters);
+  // 16-D embeddings when the network reads only structural values.
+  const int dim = QesUsesEmbeddingDifferences(structure)
+                      ? shape.input_dim - QesStructureDim(structure)
+                      : 16;
+  f.embeddings =
+      test::ClusteredEmbeddings({12, 7, 20, 9, 15}, dim, 0.4f, 11, &clusters);
   f.knn = test::BruteForceKnn(f.embeddings, knn_k);
   f.model = InitializeGcnModel(shape, aggregation, 5);
+  f.model.structure_features = structure;
+  f.model.embedding.dim = dim;
   test::RandomizeModel(&f.model, 9);
   return f;
 }
@@ -33,29 +42,42 @@ Fixture MakeFixture(const GcnShape& shape,
 class GcnForwardTest : public ::testing::TestWithParam<GcnAggregation> {};
 
 TEST_P(GcnForwardTest, OptimisedAndTrainingPathsEqualReference) {
-  for (const QesFeatureScaling scaling :
-       {QesFeatureScaling::kNone, QesFeatureScaling::kQueryScale}) {
-    SCOPED_TRACE(QesFeatureScalingName(scaling));
-    Fixture f = MakeFixture(test::SmallShape(16), GetParam(), 10);
-    f.model.feature_scaling = scaling;
-    const QesOptions qes{8, 3, 4};
-    GcnScorer scorer(f.model, f.embeddings, 1);
-    GcnWorkspace workspace;
-    for (int q = 0; q < f.knn.NumImages(); ++q) {
-      const QuerySubgraph s = BuildQuerySubgraph(f.knn, q, qes);
-      const GcnGraph<float> graph = MakeGcnGraph(f.model, s, f.embeddings);
-      const ColVector<float> reference =
-          GcnForwardReference(f.model.params, graph);
-      ASSERT_EQ(reference.size(), 8);
-      ColVector<float> training;
-      GcnLossAndGradient<float>(f.model.params, graph, 1.f, nullptr, &training);
-      std::vector<float> optimised;
-      scorer.ScoreSubgraph(s, &workspace, &optimised);
-      ASSERT_EQ(optimised.size(), 8u);
-      const float scale = 1.f + reference.cwiseAbs().maxCoeff();
-      for (int i = 0; i < 8; ++i) {
-        EXPECT_NEAR(training(i), reference(i), 1e-5f * scale);
-        EXPECT_NEAR(optimised[i], reference(i), 1e-4f * scale) << q << " " << i;
+  for (const QesStructureFeatures structure :
+       {QesStructureFeatures::kNone,
+        QesStructureFeatures::kReciprocal,
+        QesStructureFeatures::kReciprocalOnly}) {
+    for (const QesFeatureScaling scaling :
+         {QesFeatureScaling::kNone, QesFeatureScaling::kQueryScale}) {
+      SCOPED_TRACE(std::string(QesFeatureScalingName(scaling)) + " " +
+                   QesStructureFeaturesName(structure));
+      const int differences = QesUsesEmbeddingDifferences(structure) ? 16 : 0;
+      Fixture f = MakeFixture(
+          test::SmallShape(differences + QesStructureDim(structure)),
+          GetParam(),
+          10,
+          structure);
+      f.model.feature_scaling = scaling;
+      const QesOptions qes{8, 3, 4};
+      GcnScorer scorer(f.model, f.embeddings, 1);
+      GcnWorkspace workspace;
+      for (int q = 0; q < f.knn.NumImages(); ++q) {
+        const QuerySubgraph s = BuildQuerySubgraph(f.knn, q, qes);
+        const GcnGraph<float> graph = MakeGcnGraph(f.model, s, f.embeddings);
+        const ColVector<float> reference =
+            GcnForwardReference(f.model.params, graph);
+        ASSERT_EQ(reference.size(), 8);
+        ColVector<float> training;
+        GcnLossAndGradient<float>(
+            f.model.params, graph, 1.f, nullptr, &training);
+        std::vector<float> optimised;
+        scorer.ScoreSubgraph(s, &workspace, &optimised);
+        ASSERT_EQ(optimised.size(), 8u);
+        const float scale = 1.f + reference.cwiseAbs().maxCoeff();
+        for (int i = 0; i < 8; ++i) {
+          EXPECT_NEAR(training(i), reference(i), 1e-5f * scale);
+          EXPECT_NEAR(optimised[i], reference(i), 1e-4f * scale)
+              << q << " " << i;
+        }
       }
     }
   }

@@ -19,14 +19,16 @@ namespace {
 
 // Clusters of very different sizes; same cluster = matchable. A fixed-k kNN
 // cannot fit both the small and the large clusters.
-GcnTrainingScene MakeScene(uint32_t seed, const std::string& name) {
+GcnTrainingScene MakeScene(uint32_t seed,
+                           const std::string& name,
+                           float noise = 0.15f) {
   GcnTrainingScene scene;
   scene.name = name;
   std::vector<int> cluster;
   scene.embeddings = test::ClusteredEmbeddings(
       {2, 3, 2, 4, 3, 2, 3, 2, 4, 3, 2, 3, 2, 4, 3, 2, 3, 2, 25, 25},
       16,
-      0.15f,
+      noise,
       seed,
       &cluster);
   for (int i = 0; i < scene.embeddings.rows(); ++i) {
@@ -35,6 +37,43 @@ GcnTrainingScene MakeScene(uint32_t seed, const std::string& name) {
     }
   }
   return scene;
+}
+
+// A fixed-k kNN over the k1 nearest candidates of every image, with k chosen
+// so that it retrieves about `retrieved` directed pairs.
+struct FixedKnnScores {
+  int k = 0;
+  double f = 0;
+  int64_t candidates_positive = 0;  // matchable pairs among the candidates
+};
+
+FixedKnnScores ScoreFixedKnn(const GcnTrainingScene& scene,
+                             int64_t retrieved,
+                             int k1) {
+  FixedKnnScores scores;
+  const int n = static_cast<int>(scene.embeddings.rows());
+  scores.k = std::max(
+      1, static_cast<int>(std::lround(static_cast<double>(retrieved) / n)));
+  const KnnGraph knn = test::BruteForceKnn(scene.embeddings, k1);
+  std::set<std::pair<int, int>> positives(scene.positive_pairs.begin(),
+                                          scene.positive_pairs.end());
+  int64_t tp = 0;
+  for (int q = 0; q < n; ++q) {
+    for (int i = 0; i < k1; ++i) {
+      const int j = knn.indices(q, i);
+      const bool positive =
+          positives.count({std::min(q, j), std::max(q, j)}) > 0;
+      scores.candidates_positive += positive;
+      if (i < scores.k) tp += positive;
+    }
+  }
+  const double precision = static_cast<double>(tp) / (scores.k * n);
+  const double recall = static_cast<double>(tp) /
+                        std::max<int64_t>(1, scores.candidates_positive);
+  scores.f = precision + recall > 0
+                 ? 2 * precision * recall / (precision + recall)
+                 : 0.0;
+  return scores;
 }
 
 GcnTrainingOptions SmallOptions() {
@@ -110,35 +149,17 @@ TEST(GcnTrainer, LearnsClustersBetterThanFixedKnn) {
   const GcnTrainingScene test_scene = MakeScene(30, "test");
   const GcnClassificationStats gcn =
       EvaluateGcn(model, {test_scene}, options.test_qes, 0.5f, 2);
-  const int n = static_cast<int>(test_scene.embeddings.rows());
-  const int64_t retrieved = gcn.true_positives + gcn.false_positives;
-  const int k = std::max(
-      1, static_cast<int>(std::lround(static_cast<double>(retrieved) / n)));
-  const KnnGraph knn = test::BruteForceKnn(test_scene.embeddings, 12);
-  std::set<std::pair<int, int>> positives(test_scene.positive_pairs.begin(),
-                                          test_scene.positive_pairs.end());
-  int64_t tp = 0, candidates_positive = 0;
-  for (int q = 0; q < n; ++q) {
-    for (int i = 0; i < 12; ++i) {
-      const int j = knn.indices(q, i);
-      const bool positive =
-          positives.count({std::min(q, j), std::max(q, j)}) > 0;
-      candidates_positive += positive;
-      if (i < k) tp += positive;
-    }
-  }
-  const double knn_precision = static_cast<double>(tp) / (k * n);
-  const double knn_recall = static_cast<double>(tp) / candidates_positive;
-  const double knn_f =
-      2 * knn_precision * knn_recall / (knn_precision + knn_recall);
+  const FixedKnnScores knn =
+      ScoreFixedKnn(test_scene, gcn.true_positives + gcn.false_positives, 12);
+  const double knn_f = knn.f;
+  const int64_t candidates_positive = knn.candidates_positive;
   std::cout << "held-out scene: GCN P " << gcn.Precision() << " R "
-            << gcn.Recall() << " F " << gcn.F() << "; kNN k=" << k << " P "
-            << knn_precision << " R " << knn_recall << " F " << knn_f
-            << std::endl;
+            << gcn.Recall() << " F " << gcn.F() << "; kNN k=" << knn.k << " F "
+            << knn_f << std::endl;
   EXPECT_EQ(gcn.true_positives + gcn.false_negatives, candidates_positive);
   EXPECT_GT(gcn.F(), knn_f + 0.1)
       << "GCN P " << gcn.Precision() << " R " << gcn.Recall() << " F "
-      << gcn.F() << " vs kNN k=" << k << " F " << knn_f;
+      << gcn.F() << " vs kNN k=" << knn.k << " F " << knn_f;
   EXPECT_GT(gcn.F(), 0.8);
   EXPECT_NE(model.info.notes.find("6 scene(s)"), std::string::npos);
 }
@@ -264,6 +285,42 @@ TEST(GcnTrainer, RejectsBadInput) {
   GcnTrainingScene scene = MakeScene(1, "a");
   scene.positive_pairs.emplace_back(0, 1000);
   EXPECT_THROW(GcnTrainer(options).Train({scene}), Error);
+  // The distance prior reads the embedding differences.
+  options.initialization = GcnInitialization::kDistancePrior;
+  options.structure_features = QesStructureFeatures::kReciprocalOnly;
+  test::ExpectErrorContaining(
+      [&] { options.Check(); },
+      "structure_features must keep the embedding differences with the "
+      "distance prior");
+}
+
+// Only scale-free numbers per node: a small network on them separates the
+// clusters of a scene whose embeddings are spread twice as widely as the
+// training scenes', where absolute distances would mislead.
+TEST(GcnTrainer, StructureOnlyFeaturesTravelToAnotherScale) {
+  std::vector<GcnTrainingScene> train;
+  for (uint32_t seed = 11; seed < 17; ++seed) {
+    train.push_back(MakeScene(seed, "t" + std::to_string(seed)));
+  }
+  GcnTrainingOptions options = SmallOptions();
+  options.structure_features = QesStructureFeatures::kReciprocalOnly;
+  options.feature_scaling = QesFeatureScaling::kQueryScale;
+  options.shape = test::SmallShape(1);  // input_dim is set by the trainer
+  const GcnModel model = GcnTrainer(options).Train(train, {MakeScene(20, "v")});
+  EXPECT_EQ(model.shape.input_dim, 1 + kQesReciprocalDim);
+  EXPECT_EQ(model.DifferenceDim(), 0);
+  EXPECT_EQ(model.EmbeddingDim(), 16);
+
+  const GcnTrainingScene wide = MakeScene(30, "wide", 0.3f);
+  const GcnClassificationStats gcn =
+      EvaluateGcn(model, {wide}, options.test_qes, model.info.threshold, 2);
+  const FixedKnnScores knn =
+      ScoreFixedKnn(wide, gcn.true_positives + gcn.false_positives, 12);
+  std::cout << "wider scene: GCN F " << gcn.F() << "; kNN k=" << knn.k << " F "
+            << knn.f << std::endl;
+  EXPECT_GT(gcn.F(), knn.f + 0.05)
+      << "GCN P " << gcn.Precision() << " R " << gcn.Recall()
+      << "; kNN k=" << knn.k << " F " << knn.f;
 }
 
 // The closed choices of training parse from their names, once, and a bad

@@ -27,13 +27,65 @@ KnnGraph HandBuiltKnn() {
   return knn;
 }
 
-TEST(QuerySubgraph, NodesOrderEdgesAndFeatures) {
-  const KnnGraph knn = HandBuiltKnn();
+// The QES of image 0 in HandBuiltKnn with k1 = 2, k2 = 3, u = 2.
+QuerySubgraph HandBuiltSubgraph() {
   QesOptions options;
   options.k1 = 2;
   options.k2 = 3;
   options.u = 2;
-  const QuerySubgraph s = BuildQuerySubgraph(knn, 0, options);
+  return BuildQuerySubgraph(HandBuiltKnn(), 0, options);
+}
+
+TEST(QuerySubgraph, ReciprocalFeatures) {
+  const QuerySubgraph s = HandBuiltSubgraph();
+  ASSERT_EQ(s.nodes, (std::vector<int>{1, 2, 4, 5, 6}));
+  ASSERT_EQ(s.reciprocal.size(), 5u * kQesReciprocalDim);
+  // K = 3, so both overlaps use {q} + 3 nearest = {0, 1, 2, 3}; ranks are
+  // log(1 + r) / log(4), r = 3 when absent.
+  const float l2 = std::log(2.f) / std::log(4.f);
+  const float l3 = std::log(3.f) / std::log(4.f);
+  const std::vector<std::vector<float>> expected = {
+      {0.f, 0.f, 3.f / 5.f, 3.f / 5.f},   // 1: row 0 4 2
+      {l2, l2, 2.f / 6.f, 2.f / 6.f},     // 2: row 5 0 6
+      {1.f, l3, 2.f / 6.f, 2.f / 6.f},    // 4: row 1 5 0
+      {1.f, l2, 2.f / 6.f, 2.f / 6.f},    // 5: row 2 0 6
+      {1.f, 1.f, 1.f / 7.f, 1.f / 7.f}};  // 6: row 7 3 5
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < kQesReciprocalDim; ++j) {
+      EXPECT_NEAR(
+          s.reciprocal[i * kQesReciprocalDim + j], expected[i][j], 1e-6f)
+          << "node " << s.nodes[i] << " feature " << j;
+    }
+  }
+  // Appended after the embedding differences.
+  const EmbeddingMatrix e = EmbeddingMatrix::Identity(8, 8);
+  const auto x = QesNodeFeatures(
+      s, e, QesFeatureScaling::kNone, QesStructureFeatures::kReciprocal);
+  ASSERT_EQ(x.cols(), 8 + kQesReciprocalDim);
+  EXPECT_TRUE(x.leftCols(8).isApprox(QesFeatures(s, e)));
+  EXPECT_NEAR(x(0, 8 + 2), 0.6f, 1e-6f);
+  EXPECT_EQ(QesNodeFeatures(
+                s, e, QesFeatureScaling::kNone, QesStructureFeatures::kNone)
+                .cols(),
+            8);
+  // Only structure: the distance |x_v - x_q| / sqrt(D) (sqrt(2 / 8) between
+  // one-hot embeddings), then the same four values.
+  const auto only = QesNodeFeatures(
+      s, e, QesFeatureScaling::kNone, QesStructureFeatures::kReciprocalOnly);
+  ASSERT_EQ(only.cols(), 1 + kQesReciprocalDim);
+  EXPECT_NEAR(only(3, 0), 0.5f, 1e-6f);
+  EXPECT_TRUE(only.rightCols(kQesReciprocalDim)
+                  .isApprox(x.rightCols(kQesReciprocalDim)));
+  // Query-scaled: sigma_q = RMS of x_v - x_q over the 1-hop nodes = 0.5.
+  const auto scaled = QesNodeFeatures(s,
+                                      e,
+                                      QesFeatureScaling::kQueryScale,
+                                      QesStructureFeatures::kReciprocalOnly);
+  EXPECT_NEAR(scaled(3, 0), 1.f, 1e-6f);
+}
+
+TEST(QuerySubgraph, NodesOrderEdgesAndFeatures) {
+  const QuerySubgraph s = HandBuiltSubgraph();
   // 1-hop: 1, 2. 2-hop from 1: (0 = query skipped), 4, (2 known); from 2: 5,
   // (0 skipped), 6.
   EXPECT_EQ(s.query, 0);
