@@ -607,6 +607,21 @@ TEST_F(BadTrainInput, UnknownFeatureScaling) {
                     "(got \"global\")"});
 }
 
+TEST_F(BadTrainInput, UnknownStructureFeatures) {
+  ExpectTrainError("--GcnTraining.structure_features rank",
+                   {"--GcnTraining.structure_features must be one of "
+                    "none|reciprocal|reciprocal_only (got \"rank\")"});
+}
+
+TEST_F(BadTrainInput, DistancePriorNeedsEmbeddingDifferences) {
+  ExpectTrainError(
+      "--GcnTraining.initialization distance_prior "
+      "--GcnTraining.structure_features reciprocal_only",
+      {"--GcnTraining.structure_features must keep the embedding "
+       "differences with the distance prior (got "
+       "reciprocal_only)"});
+}
+
 TEST_F(BadTrainInput, UnknownInitialization) {
   ExpectTrainError("--GcnTraining.initialization zeros",
                    {"--GcnTraining.initialization must be one of "
