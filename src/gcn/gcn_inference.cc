@@ -49,12 +49,13 @@ GcnScorer::GcnScorer(const GcnModel& model,
   structure_weight_.leftCols(h1) = w1.middleRows(d, extra);
   structure_weight_.rightCols(h1) = w1.middleRows(input_dim + d, extra);
   const long n = embeddings.rows();
-  // Zero when the model reads no embedding differences (kReciprocalOnly).
-  projected_.setZero(n, 2 * h1);
+  // Nothing to project when the model reads no embedding differences.
+  if (d > 0) projected_.resize(n, 2 * h1);
   // In row blocks so that large collections can be projected in parallel.
   constexpr int kBlock = 4096;
-  const int num_blocks = static_cast<int>((n + kBlock - 1) / kBlock);
-  ParallelFor(0, d > 0 ? num_blocks : 0, num_threads, [&](int block, int) {
+  const int num_blocks =
+      d > 0 ? static_cast<int>((n + kBlock - 1) / kBlock) : 0;
+  ParallelFor(0, num_blocks, num_threads, [&](int block, int) {
     const long begin = static_cast<long>(block) * kBlock;
     const int rows = static_cast<int>(std::min<long>(kBlock, n - begin));
     Sgemm(RowMajorView(embeddings.data() + begin * d, rows, d, d),
@@ -82,48 +83,25 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
   const int n = subgraph.NumNodes();
   const int n1 = subgraph.num_one_hop;
   const AggregationMatrix g = ComputeAggregation(subgraph, model_.aggregation);
-  const std::vector<float> g1 = g.RowSums();
 
-  // Layer 1 from the projected embeddings.
+  // Layer 1: the embedding terms from the folded projections, then the
+  // structural terms.
   const int h1 = shape.gcn_dims[0];
-  const long pstride = 2 * h1;
   const int rows1 = num_layers == 1 ? n1 : n;
   EnsureSize(&ws->a,
              static_cast<size_t>(n) * *std::max_element(shape.gcn_dims.begin(),
                                                         shape.gcn_dims.end()));
   float* h = ws->a.data();
-  {
-    // Features c (e_v - e_q): the projections are linear, so the factor c
-    // scales the projected rows.
-    const float c =
-        QesFeatureFactor(subgraph, embeddings_, model_.feature_scaling);
-    const float* pq = projected_.data() + subgraph.query * pstride;
+  if (model_.DifferenceDim() > 0) {
+    WriteEmbeddingTerms(subgraph, g, rows1, h);
+  } else {
     const auto b1 = params.GcnBias(0);
-    std::vector<float> base_a(h1), base_b(h1);
-    for (int j = 0; j < h1; ++j) {
-      base_a[j] = b1(j) - c * pq[j] - offset_(j);
-      base_b[j] = c * pq[h1 + j] + offset_(h1 + j);
-    }
     for (int i = 0; i < rows1; ++i) {
-      float* out = h + static_cast<long>(i) * h1;
-      const float* pa = projected_.data() + subgraph.nodes[i] * pstride;
-      const float gi = g1[i];
-      // c = 1 without scaling: the products are exact, the scores unchanged.
-      for (int j = 0; j < h1; ++j) {
-        out[j] = c * pa[j] + base_a[j] - gi * base_b[j];
-      }
-      for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
-        Axpy(h1,
-             c * g.values[e],
-             projected_.data() + subgraph.nodes[g.columns[e]] * pstride + h1,
-             out);
-      }
+      std::copy(b1.data(), b1.data() + h1, h + static_cast<long>(i) * h1);
     }
-    if (structure_weight_.rows() > 0) {
-      AddStructureTerms(subgraph, g, rows1, h);
-    }
-    Relu(static_cast<long>(rows1) * h1, h);
   }
+  if (structure_weight_.rows() > 0) AddStructureTerms(subgraph, g, rows1, h);
+  Relu(static_cast<long>(rows1) * h1, h);
 
   // Layers 2..L.
   EnsureSize(&ws->b, ws->a.size());
@@ -184,6 +162,41 @@ void GcnScorer::ScoreSubgraph(const QuerySubgraph& subgraph,
   }
 }
 
+void GcnScorer::WriteEmbeddingTerms(const QuerySubgraph& subgraph,
+                                    const AggregationMatrix& g,
+                                    int rows,
+                                    float* h) const {
+  const int h1 = model_.shape.gcn_dims[0];
+  const long pstride = 2 * h1;
+  const std::vector<float> g1 = g.RowSums();
+  // Features c (e_v - e_q): the projections are linear, so the factor c
+  // scales the projected rows.
+  const float c =
+      QesFeatureFactor(subgraph, embeddings_, model_.feature_scaling);
+  const float* pq = projected_.data() + subgraph.query * pstride;
+  const auto b1 = model_.params.GcnBias(0);
+  std::vector<float> base_a(h1), base_b(h1);
+  for (int j = 0; j < h1; ++j) {
+    base_a[j] = b1(j) - c * pq[j] - offset_(j);
+    base_b[j] = c * pq[h1 + j] + offset_(h1 + j);
+  }
+  for (int i = 0; i < rows; ++i) {
+    float* out = h + static_cast<long>(i) * h1;
+    const float* pa = projected_.data() + subgraph.nodes[i] * pstride;
+    const float gi = g1[i];
+    // c = 1 without scaling: the products are exact, the scores unchanged.
+    for (int j = 0; j < h1; ++j) {
+      out[j] = c * pa[j] + base_a[j] - gi * base_b[j];
+    }
+    for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+      Axpy(h1,
+           c * g.values[e],
+           projected_.data() + subgraph.nodes[g.columns[e]] * pstride + h1,
+           out);
+    }
+  }
+}
+
 void GcnScorer::AddStructureTerms(const QuerySubgraph& subgraph,
                                   const AggregationMatrix& g,
                                   int rows,
@@ -225,7 +238,10 @@ std::vector<std::vector<float>> ScoreAllQueries(
   std::vector<QuerySubgraph> subgraphs(threads);
   std::vector<std::vector<float>> scores(n);
   ParallelFor(0, n, threads, [&](int q, int t) {
-    if (!builders[t]) builders[t] = std::make_unique<QesBuilder>(knn, qes);
+    if (!builders[t]) {
+      builders[t] =
+          std::make_unique<QesBuilder>(knn, qes, model.structure_features);
+    }
     builders[t]->Build(q, &subgraphs[t]);
     std::vector<float> logits;
     scorer.ScoreSubgraph(subgraphs[t], &workspaces[t], &logits);

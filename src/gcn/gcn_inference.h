@@ -46,8 +46,13 @@ class GcnScorer {
   const GcnModel& Model() const { return model_; }
 
  private:
-  // Adds [S || G S] W1_structure to the first `rows` rows of layer 1's
-  // pre-activations h (rows x h1).
+  // Writes b1 + [X || G X] W1_embedding, from the folded projections, into
+  // the first `rows` rows of layer 1's pre-activations h (rows x h1).
+  void WriteEmbeddingTerms(const QuerySubgraph& subgraph,
+                           const AggregationMatrix& g,
+                           int rows,
+                           float* h) const;
+  // Adds [S || G S] W1_structure to the first `rows` rows of h.
   void AddStructureTerms(const QuerySubgraph& subgraph,
                          const AggregationMatrix& g,
                          int rows,
@@ -55,9 +60,9 @@ class GcnScorer {
 
   const GcnModel& model_;
   const EmbeddingMatrix& embeddings_;
-  RowMatrix<float> projected_;                    // N x 2 h1: [P_a | P_b]
-  Eigen::VectorXf offset_;                        // 2 h1: c = (m .* s)^T W1
-  RowMatrix<float> structure_weight_;             // extra x 2 h1
+  RowMatrix<float> projected_;         // N x 2 h1: [P_a | P_b]; empty without D
+  Eigen::VectorXf offset_;             // 2 h1: c = (m .* s)^T W1
+  RowMatrix<float> structure_weight_;  // extra x 2 h1
   std::vector<PackedMatrix> packed_gcn_weights_;  // layers 2..L
   PackedMatrix packed_fc1_weight_;
 };

@@ -112,7 +112,7 @@ GcnModel InitializeGcnModel(const GcnShape& shape,
   model.input_shift = Eigen::VectorXf::Zero(shape.input_dim);
   model.input_scale = Eigen::VectorXf::Ones(shape.input_dim);
   model.params = GcnParameters<float>(shape);
-  model.embedding.dim = model.EmbeddingDim();
+  model.embedding.dim = shape.input_dim;
 
   std::mt19937 rng(seed);
   auto xavier = [&rng](float* data, int fan_in, int fan_out) {

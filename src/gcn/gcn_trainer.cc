@@ -76,21 +76,24 @@ PreparedScene PrepareScene(const GcnTrainingScene& scene,
 // Per-thread QES builders, one per scene, created lazily.
 class BuilderPool {
  public:
-  BuilderPool(const std::vector<PreparedScene>& scenes, int num_threads)
-      : scenes_(scenes), builders_(num_threads) {
+  BuilderPool(const std::vector<PreparedScene>& scenes,
+              QesStructureFeatures structure,
+              int num_threads)
+      : scenes_(scenes), structure_(structure), builders_(num_threads) {
     for (auto& per_thread : builders_) per_thread.resize(scenes.size());
   }
   QesBuilder& Get(int thread, int scene) {
     auto& builder = builders_[thread][scene];
     if (!builder) {
-      builder =
-          std::make_unique<QesBuilder>(scenes_[scene].knn, scenes_[scene].qes);
+      builder = std::make_unique<QesBuilder>(
+          scenes_[scene].knn, scenes_[scene].qes, structure_);
     }
     return *builder;
   }
 
  private:
   const std::vector<PreparedScene>& scenes_;
+  const QesStructureFeatures structure_;
   std::vector<std::vector<std::unique_ptr<QesBuilder>>> builders_;
 };
 
@@ -326,7 +329,7 @@ GcnModel GcnTrainer::Train(
   model.structure_features = o.structure_features;
   model.embedding.dim = dim;
   const bool prior = o.initialization == GcnInitialization::kDistancePrior;
-  BuilderPool pool(prepared, threads);
+  BuilderPool pool(prepared, o.structure_features, threads);
 
   // Input standardisation from a sample of training subgraphs (the fixed
   // counterpart of gcn_clustering's BatchNorm1d without affine).
@@ -648,7 +651,7 @@ GcnClassificationStats EvaluateGcn(const GcnModel& model,
       samples.push_back({static_cast<int>(s), q});
     }
   }
-  BuilderPool pool(prepared, threads);
+  BuilderPool pool(prepared, model.structure_features, threads);
   return EvaluateSamples(
       model, prepared, samples, 1.f, threshold, threads, &pool);
 }

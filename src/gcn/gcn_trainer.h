@@ -44,8 +44,8 @@ struct GcnTrainingOptions {
   GcnAggregation aggregation = GcnAggregation::kSymmetric;
   // Per-query scaling of the node features (stored in the model).
   QesFeatureScaling feature_scaling = QesFeatureScaling::kNone;
-  // Structural node features after the embedding differences (stored in
-  // the model).
+  // Structural node features after, or (reciprocal_only) instead of, the
+  // embedding differences (stored in the model).
   QesStructureFeatures structure_features = QesStructureFeatures::kNone;
 
   // kXavier (gcn_clustering's random start) or kDistancePrior: start

@@ -78,11 +78,14 @@ AggregationMatrix ComputeAggregation(const QuerySubgraph& subgraph,
   return g;
 }
 
-QesBuilder::QesBuilder(const KnnGraph& knn, const QesOptions& options)
+QesBuilder::QesBuilder(const KnnGraph& knn,
+                       const QesOptions& options,
+                       QesStructureFeatures structure)
     : knn_(knn),
       options_(options),
+      reciprocal_(QesStructureDim(structure) > 0),
       local_index_(knn.NumImages(), -1),
-      near_query_(knn.NumImages(), 0) {
+      near_query_(reciprocal_ ? knn.NumImages() : 0, 0) {
   options_.Check();
   if (knn_.K() < options_.RequiredK()) {
     ThrowError("the kNN graph has ",
@@ -99,6 +102,7 @@ void QesBuilder::Build(int query, QuerySubgraph* subgraph) {
   s.nodes.clear();
   s.adjacency_offsets.clear();
   s.adjacency.clear();
+  s.reciprocal.clear();
 
   // Stage 1: node discovery. The query is excluded by marking it.
   local_index_[query] = -2;
@@ -143,7 +147,7 @@ void QesBuilder::Build(int query, QuerySubgraph* subgraph) {
     s.adjacency_offsets[i + 1] += s.adjacency_offsets[i];
   }
 
-  ComputeReciprocalFeatures(&s);
+  if (reciprocal_) ComputeReciprocalFeatures(&s);
 
   // Reset the scratch map.
   local_index_[query] = -1;
@@ -198,8 +202,9 @@ void QesBuilder::ComputeReciprocalFeatures(QuerySubgraph* subgraph) {
 
 QuerySubgraph BuildQuerySubgraph(const KnnGraph& knn,
                                  int query,
-                                 const QesOptions& options) {
-  QesBuilder builder(knn, options);
+                                 const QesOptions& options,
+                                 QesStructureFeatures structure) {
+  QesBuilder builder(knn, options, structure);
   QuerySubgraph subgraph;
   builder.Build(query, &subgraph);
   return subgraph;

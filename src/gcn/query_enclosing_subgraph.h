@@ -97,8 +97,9 @@ struct QuerySubgraph {
   std::vector<int> nodes;
   std::vector<int> adjacency_offsets;  // size NumNodes() + 1
   std::vector<int> adjacency;          // local node indices
-  // NumNodes() x kQesReciprocalDim, row-major: the kReciprocal features of
-  // every node, filled by QesBuilder::Build.
+  // NumNodes() x kQesReciprocalDim, row-major: the kReciprocal values of
+  // every node; filled by QesBuilder::Build only for a builder made with
+  // structural features, empty otherwise.
   std::vector<float> reciprocal;
 
   int NumNodes() const { return static_cast<int>(nodes.size()); }
@@ -129,7 +130,11 @@ AggregationMatrix ComputeAggregation(const QuerySubgraph& subgraph,
 class QesBuilder {
  public:
   // The kNN graph must outlive the builder and have K() >= RequiredK().
-  QesBuilder(const KnnGraph& knn, const QesOptions& options);
+  // `structure`: the structural node features the subgraphs must carry
+  // (QuerySubgraph::reciprocal); none skips their cost.
+  QesBuilder(const KnnGraph& knn,
+             const QesOptions& options,
+             QesStructureFeatures structure = QesStructureFeatures::kNone);
 
   void Build(int query, QuerySubgraph* subgraph);
 
@@ -138,13 +143,16 @@ class QesBuilder {
 
   const KnnGraph& knn_;
   const QesOptions options_;
+  const bool reciprocal_;
   std::vector<int> local_index_;  // collection index -> local index or -1
   std::vector<int> near_query_;   // collection index -> overlap set flags
 };
 
-QuerySubgraph BuildQuerySubgraph(const KnnGraph& knn,
-                                 int query,
-                                 const QesOptions& options);
+QuerySubgraph BuildQuerySubgraph(
+    const KnnGraph& knn,
+    int query,
+    const QesOptions& options,
+    QesStructureFeatures structure = QesStructureFeatures::kNone);
 
 // kNN graph for a QES over a collection of n images: k = min(RequiredK, n-1).
 KnnGraph ComputeKnnForQes(const EmbeddingMatrix& embeddings,

@@ -61,7 +61,7 @@ TEST_P(GcnForwardTest, OptimisedAndTrainingPathsEqualReference) {
       GcnScorer scorer(f.model, f.embeddings, 1);
       GcnWorkspace workspace;
       for (int q = 0; q < f.knn.NumImages(); ++q) {
-        const QuerySubgraph s = BuildQuerySubgraph(f.knn, q, qes);
+        const QuerySubgraph s = BuildQuerySubgraph(f.knn, q, qes, structure);
         const GcnGraph<float> graph = MakeGcnGraph(f.model, s, f.embeddings);
         const ColVector<float> reference =
             GcnForwardReference(f.model.params, graph);

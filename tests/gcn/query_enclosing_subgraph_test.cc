@@ -28,16 +28,19 @@ KnnGraph HandBuiltKnn() {
 }
 
 // The QES of image 0 in HandBuiltKnn with k1 = 2, k2 = 3, u = 2.
-QuerySubgraph HandBuiltSubgraph() {
+QuerySubgraph HandBuiltSubgraph(
+    QesStructureFeatures structure = QesStructureFeatures::kNone) {
   QesOptions options;
   options.k1 = 2;
   options.k2 = 3;
   options.u = 2;
-  return BuildQuerySubgraph(HandBuiltKnn(), 0, options);
+  return BuildQuerySubgraph(HandBuiltKnn(), 0, options, structure);
 }
 
 TEST(QuerySubgraph, ReciprocalFeatures) {
-  const QuerySubgraph s = HandBuiltSubgraph();
+  // Only computed when asked for.
+  EXPECT_TRUE(HandBuiltSubgraph().reciprocal.empty());
+  const QuerySubgraph s = HandBuiltSubgraph(QesStructureFeatures::kReciprocal);
   ASSERT_EQ(s.nodes, (std::vector<int>{1, 2, 4, 5, 6}));
   ASSERT_EQ(s.reciprocal.size(), 5u * kQesReciprocalDim);
   // K = 3, so both overlaps use {q} + 3 nearest = {0, 1, 2, 3}; ranks are
