@@ -52,7 +52,59 @@ bool IsProgressLine(const std::string& line) {
   return std::regex_search(line, kProgress);
 }
 
+// SQLite's messages (sqlite3_errstr) for the failures a user can act on, in
+// the user's words.
+struct SqliteCause {
+  const char* message;
+  const char* cause;
+};
+const SqliteCause kSqliteCauses[] = {
+    {"database or disk is full", "the disk is full"},
+    {"disk I/O error", "a disk I/O error"},
+    {"database is locked", "the database is locked by another program"},
+    {"attempt to write a readonly database", "the database is read-only"},
+    {"unable to open database file", "the database file cannot be opened"},
+    {"database disk image is malformed", "the database is damaged"},
+    {"out of memory", "out of memory"},
+};
+
 }  // namespace
+
+std::string DiagnoseColmapOutput(const std::string& output) {
+  // The first report is the cause; later lines are mostly its consequences.
+  static const std::regex kSqlite(R"(SQLite error[^:]*: *(.*))");
+  static const std::regex kCheck(R"((Check failed: .*))");
+  static const std::regex kTerminate(
+      R"(terminate called after throwing an instance of '([^']*)')");
+  static const std::regex kWhat(R"(^\s*what\(\): *(.*))");
+  std::vector<std::string> lines = StringSplit(output, "\n");
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const std::string line = StringTrim(lines[i]);
+    std::smatch match;
+    if (std::regex_search(line, match, kSqlite)) {
+      const std::string message = StringTrim(match[1].str());
+      for (const SqliteCause& known : kSqliteCauses) {
+        if (message.find(known.message) != std::string::npos) {
+          return std::string(known.cause) + " (SQLite: " + message + ")";
+        }
+      }
+      return "a database error (SQLite: " + message + ")";
+    }
+    if (std::regex_search(line, match, kCheck)) {
+      return "COLMAP's own check failed (" + match[1].str() + ")";
+    }
+    if (std::regex_search(line, match, kTerminate)) {
+      const std::string type = match[1].str();
+      std::string what;
+      if (i + 1 < lines.size() &&
+          std::regex_search(lines[i + 1], match, kWhat)) {
+        what = ": " + StringTrim(match[1].str());
+      }
+      return "COLMAP aborted on an uncaught " + type + what;
+    }
+  }
+  return "";
+}
 
 std::string FindColmapExecutable(const std::string& hint) {
   const std::string self = SelfExecutable();
@@ -214,6 +266,7 @@ std::string ColmapRunner::Run(const std::string& command,
     log.open(options_.log_path, std::ios::app);
     log << "$ " << command_line << "\n";
   }
+  ++num_runs_;
   std::string output;
   const int status =
       RunProcess(exe_, args, &output, [&](const std::string& line) {
@@ -234,10 +287,14 @@ std::string ColmapRunner::Run(const std::string& command,
                command,
                " ran");
   }
+  const std::string cause = DiagnoseColmapOutput(output);
   if (status != 0) {
     const std::string why =
         status > 128 ? "crashed (signal " + std::to_string(status - 128) + ")"
                      : "failed (exit " + std::to_string(status) + ")";
+    if (!cause.empty()) {
+      ThrowError("colmap ", command, " ", why, ": ", cause);
+    }
     ThrowError("colmap ",
                command,
                " ",
@@ -246,6 +303,16 @@ std::string ColmapRunner::Run(const std::string& command,
                command_line,
                " -- last output: ",
                TailLines(output, 3));
+  }
+  if (!cause.empty()) {
+    ThrowError("colmap ",
+               command,
+               " reported ",
+               cause,
+               " although it exited 0",
+               options_.log_path.empty() ? "" : " (its output is in ",
+               options_.log_path,
+               options_.log_path.empty() ? "" : ")");
   }
   return output;
 }

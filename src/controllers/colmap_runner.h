@@ -38,15 +38,29 @@ class ColmapRunner {
   // "3.8" etc., from `colmap help`. Throws if the binary is not COLMAP.
   const std::string& Version() const { return version_; }
 
-  // Runs `colmap command args...` and returns its combined output.
+  // Runs `colmap command args...` and returns its combined output. Throws
+  // Error when COLMAP fails, and also when it exits 0 having reported a
+  // failure it does not act on (COLMAP 3.8 logs a failed SQLite write and
+  // goes on): the message names the cause (DiagnoseColmapOutput).
   std::string Run(const std::string& command,
                   std::vector<std::string> args) const;
+
+  // COLMAP commands started so far (`help` aside): a caller that fails
+  // before the first knows that nothing of COLMAP's is there to resume.
+  int NumRuns() const { return num_runs_; }
 
  private:
   ColmapRunnerOptions options_;
   std::string exe_;
   std::string version_;
+  mutable int num_runs_ = 0;
 };
+
+// The failure COLMAP's output reports, in a few words naming the cause
+// ("the disk is full (SQLite: database or disk is full)"), or "" when it
+// reports none. Recognises SQLite's error lines, glog's "Check failed" and
+// uncaught C++ exceptions.
+std::string DiagnoseColmapOutput(const std::string& output);
 
 // The arguments COLMAP 3.8 needs to run `command` without a GPU/display,
 // unless args already set them.

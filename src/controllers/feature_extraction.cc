@@ -1,6 +1,7 @@
 #include "controllers/feature_extraction.h"
 
 #include <filesystem>
+#include <regex>
 
 #include "scene/database.h"
 #include "scene/database_copy.h"
@@ -8,9 +9,55 @@
 #include "util/file.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
+#include "util/string.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {
+namespace {
+
+// Images COLMAP 3.8 reports as extracted: one "Features: <n>" line each.
+size_t CountReportedImages(const std::string& output) {
+  static const std::regex kFeatures(R"(^\s*Features:\s+\d+\s*$)");
+  size_t count = 0;
+  for (const std::string& line : StringSplit(output, "\n")) {
+    if (std::regex_search(line, kFeatures)) ++count;
+  }
+  return count;
+}
+
+// What COLMAP was meant to write, checked in the database rather than
+// trusted from its exit code: keypoints and descriptors for every image, at
+// least as many images with both as it reported extracting.
+void VerifyExtraction(const std::string& database_path,
+                      const std::string& output) {
+  const Database database(database_path);
+  const std::vector<DatabaseImage> missing =
+      database.ReadImagesWithoutFeatures();
+  const size_t num_images = database.NumImages();
+  if (!missing.empty()) {
+    ThrowError("colmap feature_extractor exited 0 but ",
+               missing.size(),
+               " of the ",
+               num_images,
+               " images in ",
+               database_path,
+               " have no keypoints or descriptors (the first: ",
+               missing.front().name,
+               "); run again to extract them");
+  }
+  const size_t num_reported = CountReportedImages(output);
+  if (num_images < num_reported) {
+    ThrowError("colmap feature_extractor reported ",
+               num_reported,
+               " images extracted but ",
+               database_path,
+               " holds ",
+               num_images,
+               "; run again to extract the others");
+  }
+}
+
+}  // namespace
 
 void FeatureExtractionOptions::Check() const {
   CHECK_OPTION(image_path, !image_path.empty(), "name an image folder");
@@ -43,7 +90,13 @@ FeatureExtractionSummary ExtractFeatures(
       args.end(), options.colmap_args.begin(), options.colmap_args.end());
   FeatureExtractionSummary summary;
   const Timer timer;
-  colmap.Run("feature_extractor", args);
+  try {
+    VerifyExtraction(output_path, colmap.Run("feature_extractor", args));
+  } catch (const Error&) {
+    // A partial scratch database is not resumed: the next run starts over.
+    if (options.replace_database) RemoveDatabaseFiles(output_path);
+    throw;
+  }
   summary.seconds = timer.ElapsedSeconds();
   if (options.replace_database) {
     std::error_code ec;

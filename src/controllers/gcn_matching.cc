@@ -4,8 +4,11 @@
 #include <filesystem>
 
 #include "controllers/colmap_runner.h"
+#include "retrieval/cnn_embedding.h"
+#include "retrieval/embedding_cache.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"
+#include "util/file.h"
 #include "util/file_lock.h"
 #include "util/interrupt.h"
 #include "util/logging.h"
@@ -14,6 +17,51 @@
 #include "util/timer.h"
 
 namespace colmap_gcn {
+namespace {
+
+// The files a gcn_matcher run may create beside the database. A run that
+// fails before COLMAP wrote anything removes those it created: nothing is
+// there to resume. The empty "-wal"/"-shm" that SQLite leaves beside a
+// database it only read go whenever the run ends.
+class RunFiles {
+ public:
+  RunFiles(const std::string& real_database_path,
+           const std::vector<std::string>& outputs)
+      : wal_path_(real_database_path + "-wal"),
+        shm_path_(real_database_path + "-shm"),
+        created_wal_(!ExistsFile(wal_path_)),
+        created_shm_(!ExistsFile(shm_path_)) {
+    for (const std::string& path : outputs) {
+      if (!ExistsFile(path)) new_outputs_.push_back(path);
+    }
+  }
+
+  void RemoveOutputs() const {
+    for (const std::string& path : new_outputs_) {
+      std::remove(path.c_str());
+    }
+  }
+
+  void RemoveSqliteSideFiles() const {
+    std::error_code ec;
+    if (created_wal_ && std::filesystem::is_regular_file(wal_path_, ec) &&
+        std::filesystem::file_size(wal_path_, ec) == 0) {
+      std::filesystem::remove(wal_path_, ec);
+    }
+    if (created_shm_ && !ExistsFile(wal_path_)) {
+      std::filesystem::remove(shm_path_, ec);
+    }
+  }
+
+ private:
+  std::string wal_path_;
+  std::string shm_path_;
+  bool created_wal_;
+  bool created_shm_;
+  std::vector<std::string> new_outputs_;
+};
+
+}  // namespace
 
 void GcnMatchingOptions::Matching::Check() const {
   CHECK_OPTION_GE(block_size, 1);
@@ -52,19 +100,14 @@ std::unique_ptr<PairGenerator> CreatePairGenerator(
   return PairGenerators().Create(options.pairing, options.generators, context);
 }
 
-GcnMatchingReport RunGcnMatching(const std::string& database_path,
-                                 const GcnMatchingOptions& options) {
-  options.Check();
-  const std::string log_path = options.matching.colmap_log_path.empty()
-                                   ? database_path + ".colmap.log"
-                                   : options.matching.colmap_log_path;
-  CheckOutputFolder(log_path);
-  CheckOutputFolder(options.matching.pairs_path);
-  // Refused before minutes of pairing: a database we cannot replace, or one
-  // that another gcn_matcher is working on (the lock spans the whole run).
-  const std::string real_path = ResolveDatabasePath(database_path);
-  CheckDatabaseWritable(real_path);
-  const ScopedFileLock lock(DatabaseLockPath(real_path), database_path);
+namespace {
+
+// RunGcnMatching's work once the database is locked; *colmap is set before
+// COLMAP is first run.
+GcnMatchingReport ChooseAndMatchPairs(const std::string& database_path,
+                                      const std::string& log_path,
+                                      const GcnMatchingOptions& options,
+                                      std::unique_ptr<ColmapRunner>* colmap) {
   GcnMatchingReport report;
   report.pairing = options.pairing;
   const Timer pairing_timer;
@@ -97,7 +140,7 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   ColmapRunnerOptions runner_options;
   runner_options.log_path = log_path;
   runner_options.verbose = options.matching.verbose;
-  const ColmapRunner colmap(runner_options);
+  *colmap = std::make_unique<ColmapRunner>(runner_options);
 
   PairMatchingOptions matching_options;
   matching_options.pairs_path = options.matching.pairs_path;
@@ -108,11 +151,50 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
             << (generator->UsesVerification()
                     ? " in rounds, each matched and verified before the next"
                     : "")
-            << "; matching with COLMAP " << colmap.Version();
+            << "; matching with COLMAP " << (*colmap)->Version();
   report.matching = MatchPairGenerator(
-      colmap, database_path, generator.get(), matching_options);
+      **colmap, database_path, generator.get(), matching_options);
   report.pairing_seconds += report.matching.generator_seconds;
+  if (report.matching.num_attempted_pairs == 0) {
+    LOG(WARNING) << options.pairing
+                 << " pairing chose no pairs, so nothing was matched";
+  }
   return report;
+}
+
+}  // namespace
+
+GcnMatchingReport RunGcnMatching(const std::string& database_path,
+                                 const GcnMatchingOptions& options) {
+  options.Check();
+  const std::string log_path = options.matching.colmap_log_path.empty()
+                                   ? database_path + ".colmap.log"
+                                   : options.matching.colmap_log_path;
+  CheckOutputFolder(log_path);
+  CheckOutputFolder(options.matching.pairs_path);
+  // Refused before minutes of pairing: a database we cannot replace, or one
+  // that another gcn_matcher is working on (the lock spans the whole run).
+  const std::string real_path = ResolveDatabasePath(database_path);
+  CheckDatabaseWritable(real_path);
+  const ScopedFileLock lock(DatabaseLockPath(real_path), database_path);
+  const RunFiles run_files(
+      real_path,
+      {log_path,
+       options.matching.pairs_path.empty() ? database_path + ".pairs.txt"
+                                           : options.matching.pairs_path,
+       DefaultEmbeddingCachePath(database_path),
+       DefaultCnnCachePath(database_path)});
+  std::unique_ptr<ColmapRunner> colmap;
+  try {
+    GcnMatchingReport report =
+        ChooseAndMatchPairs(database_path, log_path, options, &colmap);
+    run_files.RemoveSqliteSideFiles();
+    return report;
+  } catch (...) {
+    if (colmap == nullptr || colmap->NumRuns() == 0) run_files.RemoveOutputs();
+    run_files.RemoveSqliteSideFiles();
+    throw;
+  }
 }
 
 void PrintGcnMatchingReport(const GcnMatchingReport& report) {

@@ -45,18 +45,61 @@ std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometriesById(
   return by_id;
 }
 
+typedef std::unordered_map<image_pair_t, TwoViewGeometryInfo> GeometryMap;
+
+// What COLMAP was meant to write for a block, checked in the copy rather
+// than trusted from its exit code: COLMAP 3.8 logs a failed SQLite write
+// (a full disk) and still exits 0. Returns the copy's geometries.
+GeometryMap VerifyMatchedBlock(const std::string& work_path,
+                               const std::vector<DatabaseImage>& images,
+                               const std::vector<ImagePair>& block) {
+  const Database copy(work_path);
+  GeometryMap geometries = GeometriesById(copy);
+  const std::vector<image_pair_t> match_ids = copy.ReadMatchesPairIds();
+  const std::unordered_set<image_pair_t> with_matches(match_ids.begin(),
+                                                      match_ids.end());
+  size_t num_missing = 0;
+  const ImagePair* first_missing = nullptr;
+  for (const ImagePair& pair : block) {
+    const image_pair_t pair_id = ImagePairToPairId(pair.first, pair.second);
+    if (geometries.count(pair_id) == 0 || with_matches.count(pair_id) == 0) {
+      if (num_missing++ == 0) first_missing = &pair;
+    }
+  }
+  if (num_missing > 0) {
+    std::unordered_map<image_t, std::string> names;
+    for (const DatabaseImage& image : images) {
+      names.emplace(image.image_id, image.name);
+    }
+    ThrowError("colmap matches_importer exited 0 but wrote no result for ",
+               num_missing,
+               " of the ",
+               block.size(),
+               " pairs it was given (the first: ",
+               names[first_missing->first],
+               " ",
+               names[first_missing->second],
+               ")");
+  }
+  return geometries;
+}
+
 // COLMAP's matches_importer on the pairs in blocks of options.block_size,
-// into the working copy at work_path; each block commits.
-void RunMatchesImporter(const ColmapRunner& colmap,
-                        const std::string& database_path,
-                        const std::string& work_path,
-                        const std::string& todo_path,
-                        const std::vector<DatabaseImage>& images,
-                        const PairMatchingOptions& options,
-                        const std::vector<ImagePair>& pairs,
-                        bool stop_between_blocks) {
+// into the working copy; each block commits and is verified before the
+// next. A signal between blocks is reported like one during COLMAP's run.
+// Returns the copy's geometries after the last block.
+GeometryMap RunMatchesImporter(const ColmapRunner& colmap,
+                               DatabaseWorkingCopy* working_copy,
+                               const std::vector<DatabaseImage>& images,
+                               const PairMatchingOptions& options,
+                               const std::vector<ImagePair>& pairs,
+                               bool stop_between_blocks) {
+  const std::string& work_path = working_copy->Path();
+  const std::string todo_path = work_path + ".pairs.txt";
   const size_t block_size = static_cast<size_t>(options.block_size);
   const size_t num_blocks = (pairs.size() + block_size - 1) / block_size;
+  const InterruptCheckpoints checkpoints;
+  GeometryMap geometries;
   for (size_t block = 0; block < num_blocks; ++block) {
     const auto begin = pairs.begin() + block * block_size;
     const auto end =
@@ -65,7 +108,7 @@ void RunMatchesImporter(const ColmapRunner& colmap,
       LOG(INFO) << "matching block " << block + 1 << "/" << num_blocks << " ("
                 << end - begin << " pairs)";
     }
-    WritePairsFile(todo_path, std::vector<ImagePair>(begin, end), images);
+    const std::vector<ImagePair> block_pairs(begin, end);
     std::vector<std::string> args = {"--database_path",
                                      work_path,
                                      "--match_list_path",
@@ -75,11 +118,16 @@ void RunMatchesImporter(const ColmapRunner& colmap,
     args.insert(
         args.end(), options.colmap_args.begin(), options.colmap_args.end());
     try {
+      ThrowIfInterrupted("before colmap matches_importer ran");
+      WritePairsFile(todo_path, block_pairs, images);
+      working_copy->MarkWritten();
       colmap.Run("matches_importer", args);
+      geometries = VerifyMatchedBlock(work_path, images, block_pairs);
+      ThrowIfInterrupted("after colmap matches_importer ran");
     } catch (const Error& error) {
       ThrowError(error.what(),
                  " -- ",
-                 database_path,
+                 working_copy->DatabasePath(),
                  " is unchanged; the pairs matched so far are kept in ",
                  work_path,
                  " and the next run resumes from there");
@@ -88,27 +136,32 @@ void RunMatchesImporter(const ColmapRunner& colmap,
       StopPointForTests("matching");
     }
   }
+  return geometries;
 }
 
 // Matches the pairs in blocks on a copy of the database that replaces it
 // once everything is matched. Each block is one COLMAP run that commits
 // into the copy, so an interrupted run resumes with at most one block lost.
-void MatchOnWorkingCopy(const ColmapRunner& colmap,
-                        const std::string& database_path,
-                        const std::vector<DatabaseImage>& images,
-                        const PairMatchingOptions& options,
-                        std::vector<ImagePair>* pairs,
-                        PairMatchingSummary* summary) {
+// Returns the geometries of the database as committed.
+GeometryMap MatchOnWorkingCopy(const ColmapRunner& colmap,
+                               const std::string& database_path,
+                               const std::vector<DatabaseImage>& images,
+                               const PairMatchingOptions& options,
+                               std::vector<ImagePair>* pairs,
+                               PairMatchingSummary* summary) {
   DatabaseWorkingCopy working_copy(database_path);
   const std::string& work_path = working_copy.Path();
-  if (working_copy.Resumed()) {
+  GeometryMap geometries;
+  {
     const Database copy(work_path);
-    const auto matched = GeometriesById(copy);
+    geometries = GeometriesById(copy);
+  }
+  if (working_copy.Resumed()) {
     const size_t num_pairs = pairs->size();
     pairs->erase(std::remove_if(pairs->begin(),
                                 pairs->end(),
                                 [&](const ImagePair& pair) {
-                                  return matched.count(ImagePairToPairId(
+                                  return geometries.count(ImagePairToPairId(
                                              pair.first, pair.second)) > 0;
                                 }),
                  pairs->end());
@@ -117,23 +170,50 @@ void MatchOnWorkingCopy(const ColmapRunner& colmap,
               << " (" << num_pairs - pairs->size() << " of " << num_pairs
               << " pairs were matched already)";
   }
-  const std::string todo_path = work_path + ".pairs.txt";
   const Timer timer;
-  RunMatchesImporter(colmap,
-                     database_path,
-                     work_path,
-                     todo_path,
-                     images,
-                     options,
-                     *pairs,
-                     /*stop_between_blocks=*/true);
+  if (!pairs->empty()) {
+    geometries = RunMatchesImporter(colmap,
+                                    &working_copy,
+                                    images,
+                                    options,
+                                    *pairs,
+                                    /*stop_between_blocks=*/true);
+  }
   summary->matching_seconds = timer.ElapsedSeconds();
   {
     const CriticalSection critical;
     working_copy.Commit();
   }
   std::error_code ec;
-  std::filesystem::remove(todo_path, ec);
+  std::filesystem::remove(work_path + ".pairs.txt", ec);
+  return geometries;
+}
+
+// The pairs file of a generator's rounds: the attempted pairs in id order,
+// with the generator's scores (given in yield order) when it has them.
+void WriteAttemptedPairs(const std::string& path,
+                         const std::vector<ImagePair>& attempted,
+                         const std::vector<float>& yield_scores,
+                         const std::vector<DatabaseImage>& images) {
+  std::vector<size_t> order(attempted.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<ImagePair> keys;
+  for (const ImagePair& pair : attempted) {
+    keys.emplace_back(std::min(pair.first, pair.second),
+                      std::max(pair.first, pair.second));
+  }
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return keys[a] < keys[b];
+  });
+  std::vector<ImagePair> sorted;
+  std::vector<float> sorted_scores;
+  for (const size_t i : order) {
+    sorted.push_back(keys[i]);
+    if (yield_scores.size() == attempted.size()) {
+      sorted_scores.push_back(yield_scores[i]);
+    }
+  }
+  WritePairsFile(path, sorted, images, sorted_scores);
 }
 
 }  // namespace
@@ -174,11 +254,12 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   std::unordered_set<image_pair_t> pair_ids;
   std::unordered_map<image_pair_t, float> scores;
   std::vector<ImagePair> unmatched_pairs;
+  GeometryMap geometries;
   {
     const Database database(database_path);
     CheckWritableByColmap(colmap, database);
     images = database.ReadAllImages();
-    const auto geometries = GeometriesById(database);
+    geometries = GeometriesById(database);
     for (size_t i = 0; i < pairs.size(); ++i) {
       const ImagePair& pair = pairs[i];
       if (pair.first == pair.second) continue;
@@ -212,12 +293,11 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   WritePairsFile(summary.pairs_path, all_pairs, images, all_scores);
 
   if (!unmatched_pairs.empty()) {
-    MatchOnWorkingCopy(
+    geometries = MatchOnWorkingCopy(
         colmap, database_path, images, options, &unmatched_pairs, &summary);
   }
 
-  const Database database(database_path);
-  for (const auto& [pair_id, info] : GeometriesById(database)) {
+  for (const auto& [pair_id, info] : geometries) {
     if (pair_ids.count(pair_id) > 0 &&
         IsVerifiedTwoViewGeometry(
             info.config, info.num_inliers, min_num_inliers)) {
@@ -260,8 +340,7 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
 
   DatabaseWorkingCopy working_copy(database_path);
   const std::string& work_path = working_copy.Path();
-  const std::string todo_path = work_path + ".pairs.txt";
-  std::unordered_map<image_pair_t, TwoViewGeometryInfo> geometries;
+  GeometryMap geometries;
   {
     const Database copy(work_path);
     geometries = GeometriesById(copy);
@@ -302,17 +381,13 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
     }
     if (!todo.empty()) {
       const Timer timer;
-      RunMatchesImporter(colmap,
-                         database_path,
-                         work_path,
-                         todo_path,
-                         images,
-                         options,
-                         todo,
-                         /*stop_between_blocks=*/false);
+      geometries = RunMatchesImporter(colmap,
+                                      &working_copy,
+                                      images,
+                                      options,
+                                      todo,
+                                      /*stop_between_blocks=*/false);
       summary.matching_seconds += timer.ElapsedSeconds();
-      const Database copy(work_path);
-      geometries = GeometriesById(copy);
     }
     std::vector<PairVerification> verifications;
     verifications.reserve(round_pairs.size());
@@ -333,28 +408,8 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
     generator_seconds += generator_timer.ElapsedSeconds();
 
     // What users inspect: every pair attempted so far, with its score.
-    const std::vector<float> yield_scores = generator->Scores();
-    std::vector<ImagePair> sorted;
-    std::vector<float> sorted_scores;
-    {
-      std::vector<size_t> order(attempted.size());
-      for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-      std::vector<ImagePair> keys;
-      for (const ImagePair& pair : attempted) {
-        keys.emplace_back(std::min(pair.first, pair.second),
-                          std::max(pair.first, pair.second));
-      }
-      std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return keys[a] < keys[b];
-      });
-      for (const size_t i : order) {
-        sorted.push_back(keys[i]);
-        if (yield_scores.size() == attempted.size()) {
-          sorted_scores.push_back(yield_scores[i]);
-        }
-      }
-    }
-    WritePairsFile(summary.pairs_path, sorted, images, sorted_scores);
+    WriteAttemptedPairs(
+        summary.pairs_path, attempted, generator->Scores(), images);
     if (!generator->HasFinished()) StopPointForTests("matching");
   }
   summary.generator_seconds = generator_seconds;
@@ -372,7 +427,7 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
     working_copy.Commit();
   }
   std::error_code ec;
-  std::filesystem::remove(todo_path, ec);
+  std::filesystem::remove(work_path + ".pairs.txt", ec);
   if (pairs != nullptr) *pairs = std::move(attempted);
   return summary;
 }

@@ -102,7 +102,8 @@ ImportedPairGenerator::ImportedPairGenerator(
   }
   std::vector<std::string> unknown;
   std::unordered_set<image_pair_t> seen;
-  for (const auto& [name1, name2] : ReadPairsFile(options_.match_list_path)) {
+  const auto named_pairs = ReadPairsFile(options_.match_list_path);
+  for (const auto& [name1, name2] : named_pairs) {
     const auto it1 = name_to_id.find(name1);
     const auto it2 = name_to_id.find(name2);
     for (const auto& [it, name] :
@@ -131,6 +132,15 @@ ImportedPairGenerator::ImportedPairGenerator(
                " image name(s) not in the database: ",
                StringJoin(listed, ", "),
                unknown.size() > kMaxListed ? ", ..." : "");
+  }
+  // Matching nothing and reporting success would hide a wrong file.
+  if (image_pairs_.empty()) {
+    ThrowError(options_.match_list_path,
+               named_pairs.empty()
+                   ? " lists no image pairs"
+                   : " lists only pairs of an image with itself (" +
+                         std::to_string(named_pairs.size()) + " lines)",
+               "; nothing to match");
   }
 }
 

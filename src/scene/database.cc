@@ -239,6 +239,30 @@ std::vector<TwoViewGeometryInfo> Database::ReadTwoViewGeometryInfos() const {
   return infos;
 }
 
+std::vector<image_pair_t> Database::ReadMatchesPairIds() const {
+  SqliteStatement stmt(
+      db_, path_, "SELECT pair_id FROM matches ORDER BY pair_id");
+  std::vector<image_pair_t> pair_ids;
+  while (stmt.Step()) {
+    pair_ids.push_back(static_cast<image_pair_t>(stmt.Int64(0)));
+  }
+  return pair_ids;
+}
+
+std::vector<DatabaseImage> Database::ReadImagesWithoutFeatures() const {
+  SqliteStatement stmt(db_,
+                       path_,
+                       "SELECT image_id, name, camera_id FROM images WHERE "
+                       "image_id NOT IN (SELECT image_id FROM keypoints) OR "
+                       "image_id NOT IN (SELECT image_id FROM descriptors) "
+                       "ORDER BY image_id");
+  std::vector<DatabaseImage> images;
+  while (stmt.Step()) {
+    images.push_back(ReadImageRow(stmt));
+  }
+  return images;
+}
+
 void Database::UpdateCamera(const DatabaseCamera& camera) {
   RequireWritable();
   const int num_params = CameraModelNumParams(camera.model_id);

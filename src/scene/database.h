@@ -114,6 +114,15 @@ class Database {
   // Only pair_id, config and rows (no blobs), ordered by pair_id.
   std::vector<TwoViewGeometryInfo> ReadTwoViewGeometryInfos() const;
 
+  // The pair ids that have a matches row (with any number of matches),
+  // ordered.
+  std::vector<image_pair_t> ReadMatchesPairIds() const;
+
+  // Images lacking a keypoints or a descriptors row (a row with zero
+  // features counts: COLMAP writes one for a featureless image), ordered by
+  // image_id.
+  std::vector<DatabaseImage> ReadImagesWithoutFeatures() const;
+
   // Writing (requires kReadWrite). Used to set ground-truth intrinsics before
   // point_triangulator.
   void UpdateCamera(const DatabaseCamera& camera);

@@ -138,6 +138,13 @@ DatabaseWorkingCopy::DatabaseWorkingCopy(const std::string& database_path)
   WriteFileAtomically(source_path, fingerprint_ + "\n");
 }
 
+DatabaseWorkingCopy::~DatabaseWorkingCopy() {
+  if (committed_ || resumed_ || written_) return;
+  RemoveDatabaseFiles(copy_path_);
+  std::error_code ec;
+  fs::remove(database_path_ + kSourceSuffix, ec);
+}
+
 void DatabaseWorkingCopy::Commit() {
   const std::string source_path = database_path_ + kSourceSuffix;
   CheckpointDatabase(copy_path_);
@@ -175,6 +182,7 @@ void DatabaseWorkingCopy::Commit() {
                ": ",
                ec.message());
   }
+  committed_ = true;
   SyncDirectoryOf(database_path_);
   // The database's own log was folded in before the copy was made.
   RemoveEmptySideFiles(database_path_);

@@ -27,10 +27,15 @@ std::string DatabaseLockPath(const std::string& database_path);
 // the copy (keeping everything COLMAP committed into it), unless SQLite finds
 // it damaged, in which case it is discarded and made anew. Commit() verifies
 // the copy, flushes it to disk and renames it over the database, but only if
-// no other program changed the database meanwhile.
+// no other program changed the database meanwhile. A new copy that nothing
+// was written into (MarkWritten) holds nothing worth resuming: it is removed
+// when the object goes without a Commit().
 class DatabaseWorkingCopy {
  public:
   explicit DatabaseWorkingCopy(const std::string& database_path);
+  ~DatabaseWorkingCopy();
+  DatabaseWorkingCopy(const DatabaseWorkingCopy&) = delete;
+  DatabaseWorkingCopy& operator=(const DatabaseWorkingCopy&) = delete;
 
   // The copy COLMAP should write into.
   const std::string& Path() const { return copy_path_; }
@@ -38,6 +43,10 @@ class DatabaseWorkingCopy {
   const std::string& DatabasePath() const { return database_path_; }
   // True when an interrupted earlier run's copy is continued.
   bool Resumed() const { return resumed_; }
+
+  // Call before another program (COLMAP) writes into the copy: from then on
+  // the copy is kept for the next run to resume.
+  void MarkWritten() { written_ = true; }
 
   // Replaces the database with the verified copy; throws Error (leaving the
   // database as it is) when the copy is damaged or the database changed.
@@ -48,6 +57,8 @@ class DatabaseWorkingCopy {
   std::string copy_path_;
   std::string fingerprint_;
   bool resumed_ = false;
+  bool written_ = false;
+  bool committed_ = false;
 };
 
 }  // namespace colmap_gcn

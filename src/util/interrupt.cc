@@ -6,12 +6,15 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "util/error.h"
+
 namespace colmap_gcn {
 namespace {
 
 std::atomic<pid_t> g_child{0};
 std::atomic<int> g_pending{0};
 std::atomic<int> g_critical_depth{0};
+std::atomic<int> g_checkpoint_depth{0};
 
 const int kInterruptSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
@@ -20,6 +23,13 @@ const int kInterruptSignals[] = {SIGINT, SIGTERM, SIGHUP};
   std::memset(&action, 0, sizeof(action));
   action.sa_handler = SIG_DFL;
   sigaction(signal_number, &action, nullptr);
+  // Called from the handler, the signal is blocked until it returns; raised
+  // while blocked it would stay pending and the process would _exit
+  // silently instead of ending by the signal.
+  sigset_t unblock;
+  sigemptyset(&unblock);
+  sigaddset(&unblock, signal_number);
+  sigprocmask(SIG_UNBLOCK, &unblock, nullptr);
   raise(signal_number);
   _exit(128 + signal_number);
 }
@@ -32,7 +42,7 @@ void HandleInterrupt(const int signal_number) {
     kill(child, signal_number);
     return;
   }
-  if (g_critical_depth.load() > 0) return;
+  if (g_critical_depth.load() > 0 || g_checkpoint_depth.load() > 0) return;
   DieBySignal(signal_number);
 }
 
@@ -56,8 +66,20 @@ void SetInterruptibleChild(const pid_t pid) { g_child.store(pid); }
 CriticalSection::CriticalSection() { ++g_critical_depth; }
 
 CriticalSection::~CriticalSection() {
-  if (--g_critical_depth == 0 && g_pending.load() != 0 && g_child.load() == 0) {
+  if (--g_critical_depth == 0 && g_pending.load() != 0 && g_child.load() == 0 &&
+      g_checkpoint_depth.load() == 0) {
     DieBySignal(g_pending.load());
+  }
+}
+
+InterruptCheckpoints::InterruptCheckpoints() { ++g_checkpoint_depth; }
+
+InterruptCheckpoints::~InterruptCheckpoints() { --g_checkpoint_depth; }
+
+void ThrowIfInterrupted(const char* during) {
+  const int signal_number = g_pending.load();
+  if (signal_number != 0) {
+    ThrowError("interrupted (signal ", signal_number, ") ", during);
   }
 }
 

@@ -8,7 +8,9 @@ namespace colmap_gcn {
 // signal that arrives while a child process runs is forwarded to the child
 // (whose failure is then reported as an interruption, with the usual
 // cleanup); one that arrives inside a CriticalSection is held until the
-// section ends; otherwise it ends the process as it would by default.
+// section ends; one inside an InterruptCheckpoints scope is held until the
+// next ThrowIfInterrupted(); otherwise it ends the process as it would by
+// default.
 void InstallInterruptHandlers();
 
 // The signal that interrupted this run, 0 if none.
@@ -26,6 +28,22 @@ class CriticalSection {
   CriticalSection(const CriticalSection&) = delete;
   CriticalSection& operator=(const CriticalSection&) = delete;
 };
+
+// Loops of COLMAP runs (matching block by block): a signal between two runs
+// is held and reported by the next ThrowIfInterrupted() like one that
+// arrives while COLMAP runs, so an interrupted loop always ends the same way
+// (its cleanup, one "ERROR: interrupted" line, exit 128 + signal) wherever
+// the signal lands.
+class InterruptCheckpoints {
+ public:
+  InterruptCheckpoints();
+  ~InterruptCheckpoints();
+  InterruptCheckpoints(const InterruptCheckpoints&) = delete;
+  InterruptCheckpoints& operator=(const InterruptCheckpoints&) = delete;
+};
+
+// Throws Error "interrupted (signal N) <during>" when a signal is pending.
+void ThrowIfInterrupted(const char* during);
 
 // Test hook: when the environment variable COLMAP_GCN_STOP_AT equals name,
 // the process stops itself (SIGSTOP) the first time it passes here, so

@@ -4,12 +4,15 @@
 
 #include <cstdlib>
 
+#include "fake_colmap.h"
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
 namespace {
+
+using test::ExpectErrorContaining;
 
 TEST(HeadlessArguments, AddsCpuFlagsUnlessGiven) {
   EXPECT_EQ(HeadlessArguments("feature_extractor", {}),
@@ -36,6 +39,42 @@ TEST(RunProcess, CapturesOutputLinesAndExitCodes) {
   // A crash is reported like a shell does: 128 + signal.
   EXPECT_EQ(RunProcess("/bin/sh", {"-c", "kill -ABRT $$"}, &output), 134);
   EXPECT_THROW(RunProcess("/nonexistent/program", {}, &output), Error);
+}
+
+TEST(DiagnoseColmapOutput, NamesTheCauseOfTheFirstFailure) {
+  EXPECT_EQ(DiagnoseColmapOutput("Processed file [1/2]\nElapsed time: 0.1"),
+            "");
+  EXPECT_EQ(DiagnoseColmapOutput(
+                "Matching block [1/1]\n"
+                "SQLite error [/colmap/src/base/database.cc, line 1092]: "
+                "database or disk is full\n"
+                "SQLite error [/colmap/src/base/database.cc, line 1093]: "
+                "cannot commit - no transaction is active\n"),
+            "the disk is full (SQLite: database or disk is full)");
+  EXPECT_EQ(DiagnoseColmapOutput("SQLite error: disk I/O error"),
+            "a disk I/O error (SQLite: disk I/O error)");
+  EXPECT_EQ(DiagnoseColmapOutput("SQLite error [x, line 1]: no such table"),
+            "a database error (SQLite: no such table)");
+  EXPECT_EQ(DiagnoseColmapOutput("F1203 01:02:03.000 1 reconstruction.cc:10] "
+                                 "Check failed: existing_image_id "),
+            "COLMAP's own check failed (Check failed: existing_image_id)");
+  EXPECT_EQ(
+      DiagnoseColmapOutput("terminate called after throwing an instance of "
+                           "'std::out_of_range'\n  what():  _Map_base::at\n"),
+      "COLMAP aborted on an uncaught std::out_of_range: _Map_base::at");
+}
+
+TEST(ColmapRunner, FailureReportedBehindExitZeroIsAnError) {
+  TemporaryDirectory dir;
+  const test::FakeColmap fake(dir.Path());
+  fake.PrintOnEveryRun("SQLite error [db.cc, line 9]: disk I/O error\n");
+  ExpectErrorContaining(
+      [&] { fake.Runner().Run("mapper", {}); },
+      "colmap mapper reported a disk I/O error (SQLite: disk I/O error) "
+      "although it exited 0");
+  fake.FailRuns();
+  ExpectErrorContaining([&] { fake.Runner().Run("mapper", {}); },
+                        "colmap mapper failed (exit 1): ");
 }
 
 TEST(FindColmapExecutable, HonoursHintAndRejectsMissing) {

@@ -12,7 +12,7 @@ namespace test {
 // to COLMAP and do with its results without running COLMAP: a shell script
 // that reports version 3.8 to `help` and otherwise records its arguments;
 // `feature_extractor` copies a template database to --database_path,
-// `mapper` creates the model folder <--output_path>/0.
+// `mapper` writes a model without images to <--output_path>/0.
 class FakeColmap {
  public:
   // Writes the script and its files into dir (which must exist).
@@ -32,6 +32,19 @@ class FakeColmap {
 
   // Every later run exits 1 after recording its arguments, writing nothing.
   void FailRuns() const;
+
+  // Every later run prints text (as COLMAP logs a failure it goes on from).
+  void PrintOnEveryRun(const std::string& text) const;
+
+  // Every later run exits 0 having written nothing, like COLMAP 3.8 when
+  // its SQLite writes fail.
+  void SkipWrites() const;
+
+  // `mapper` writes model files that do not read back (a full disk).
+  void WriteTruncatedModels() const;
+
+  // Like SetExtractedImages, but the last image gets no descriptors.
+  void SetImagesWithoutFeatures(int num_images) const;
 
  private:
   std::string dir_;

@@ -48,6 +48,41 @@ TEST(FeatureExtraction, PassesTheImagesThenTheUsersArguments) {
   EXPECT_GE(summary.seconds, 0.0);
 }
 
+TEST(FeatureExtraction, ImagesLeftWithoutFeaturesAreAnError) {
+  TemporaryDirectory dir;
+  const FakeColmap fake(dir.Path());
+  fake.SetImagesWithoutFeatures(3);
+  const std::string database_path = JoinPaths(dir.Path(), "database.db");
+  FeatureExtractionOptions options;
+  options.image_path = "/images";
+  ExpectErrorContaining(
+      [&] { ExtractFeatures(fake.Runner(), database_path, options); },
+      "colmap feature_extractor exited 0 but 1 of the 3 images in " +
+          database_path +
+          " have no keypoints or descriptors (the first: img3.jpg)");
+  // A scratch database that failed is not kept.
+  options.replace_database = true;
+  EXPECT_THROW(ExtractFeatures(fake.Runner(), database_path, options), Error);
+  EXPECT_FALSE(ExistsFile(database_path + ".partial"));
+}
+
+TEST(FeatureExtraction, FewerImagesThanReportedAreAnError) {
+  TemporaryDirectory dir;
+  const FakeColmap fake(dir.Path());
+  fake.PrintOnEveryRun(
+      "Processed file [1/3]\n  Features:        10\n"
+      "Processed file [2/3]\n  Features:        12\n"
+      "Processed file [3/3]\n  Features:        11\n");
+  FeatureExtractionOptions options;
+  options.image_path = "/images";
+  ExpectErrorContaining(
+      [&] {
+        ExtractFeatures(
+            fake.Runner(), JoinPaths(dir.Path(), "database.db"), options);
+      },
+      "colmap feature_extractor reported 3 images extracted but");
+}
+
 TEST(FeatureExtraction, ImageListAndSingleCameraUnlessTheUserSetsIt) {
   TemporaryDirectory dir;
   const FakeColmap fake(dir.Path());

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "fake_colmap.h"
+#include "scene/reconstruction_stats.h"
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -29,12 +30,14 @@ TEST(IncrementalMapping, PassesColmapsDefaultsUnlessTheUserSetsThem) {
                        "--image_path",
                        "/images",
                        "--output_path",
-                       output_path,
+                       output_path + ".partial",
                        "--Mapper.num_threads",
                        "-1",
                        "--Mapper.min_model_size",
                        "10"}));
   EXPECT_EQ(summary.model_paths, Arguments{JoinPaths(output_path, "0")});
+  // The models were moved out of the mapper's scratch folder.
+  EXPECT_FALSE(ExistsDir(output_path + ".partial"));
 
   // Ours, then the user's; a flag the user sets is not passed twice.
   options.num_threads = 1;
@@ -50,7 +53,7 @@ TEST(IncrementalMapping, PassesColmapsDefaultsUnlessTheUserSetsThem) {
                        "--image_path",
                        "/images",
                        "--output_path",
-                       output_path,
+                       output_path + ".partial",
                        "--Mapper.min_model_size",
                        "3",
                        "--Mapper.num_threads=2",
@@ -93,6 +96,22 @@ TEST(IncrementalMapping, ColmapFailureIsAnError) {
             fake.Runner(), "/db", JoinPaths(dir.Path(), "sparse"), options);
       },
       "mapper");
+}
+
+TEST(IncrementalMapping, UnreadableModelIsAnErrorAndNotKept) {
+  TemporaryDirectory dir;
+  const FakeColmap fake(dir.Path());
+  fake.WriteTruncatedModels();
+  const std::string output_path = JoinPaths(dir.Path(), "sparse");
+  IncrementalMappingOptions options;
+  options.image_path = "/images";
+  ExpectErrorContaining(
+      [&] {
+        RunIncrementalMapping(fake.Runner(), "/db", output_path, options);
+      },
+      "colmap mapper exited 0 but wrote an unreadable model (");
+  EXPECT_TRUE(ListSparseModels(output_path).empty());
+  EXPECT_FALSE(ExistsDir(output_path + ".partial"));
 }
 
 TEST(IncrementalMapping, CheckNamesTheField) {

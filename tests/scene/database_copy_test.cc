@@ -166,6 +166,7 @@ TEST_F(DatabaseFiles, WorkingCopyResumesWhileTheDatabaseIsUnchanged) {
   {
     DatabaseWorkingCopy copy(base_);
     copy_path = copy.Path();
+    copy.MarkWritten();
     ExecuteSql(copy_path,
                "INSERT INTO two_view_geometries (pair_id, rows, cols, config) "
                "VALUES (4294967299, 0, 2, 2);");
@@ -183,9 +184,28 @@ TEST_F(DatabaseFiles, WorkingCopyResumesWhileTheDatabaseIsUnchanged) {
   EXPECT_EQ(NumGeometries(copy.Path()), 2);
 }
 
+TEST_F(DatabaseFiles, WorkingCopyNothingWasWrittenIntoIsRemoved) {
+  std::string copy_path;
+  {
+    DatabaseWorkingCopy copy(base_);
+    copy_path = copy.Path();
+    EXPECT_TRUE(ExistsFile(copy_path));
+    // A failure before COLMAP ran: nothing to resume.
+  }
+  EXPECT_FALSE(ExistsFile(copy_path));
+  EXPECT_FALSE(ExistsFile(base_ + ".gcn-partial.source"));
+  for (const char* suffix : kDatabaseSideFileSuffixes) {
+    EXPECT_FALSE(ExistsFile(copy_path + suffix)) << suffix;
+  }
+}
+
 TEST_F(DatabaseFiles, WorkingCopyDiscardsADamagedCopy) {
   std::string copy_path;
-  { copy_path = DatabaseWorkingCopy(base_).Path(); }
+  {
+    DatabaseWorkingCopy copy(base_);
+    copy.MarkWritten();
+    copy_path = copy.Path();
+  }
   WriteFileAtomically(copy_path, std::string(8192, 'x'));
   testing::internal::CaptureStderr();
   DatabaseWorkingCopy copy(base_);
