@@ -2,10 +2,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include "controllers/colmap_runner.h"
-#include "retrieval/cnn_embedding.h"
-#include "retrieval/embedding_cache.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -19,46 +18,82 @@
 namespace colmap_gcn {
 namespace {
 
-// The files a gcn_matcher run may create beside the database. A run that
-// fails before COLMAP wrote anything removes those it created: nothing is
-// there to resume. The empty "-wal"/"-shm" that SQLite leaves beside a
-// database it only read go whenever the run ends.
+// The files a gcn_matcher run may create: the pairs file, COLMAP's log and
+// whatever it keeps beside the database ("<database>.*": embedding caches,
+// the working copy; "<database>-wal"/"-shm"). A run that fails before COLMAP
+// wrote anything removes those it created: nothing is there to resume. The
+// empty "-wal"/"-shm" that SQLite leaves beside a database it only read go
+// whenever the run ends.
 class RunFiles {
  public:
-  RunFiles(const std::string& real_database_path,
+  RunFiles(const std::string& database_path,
+           const std::string& real_database_path,
            const std::vector<std::string>& outputs)
-      : wal_path_(real_database_path + "-wal"),
-        shm_path_(real_database_path + "-shm"),
-        created_wal_(!ExistsFile(wal_path_)),
-        created_shm_(!ExistsFile(shm_path_)) {
+      : database_path_(real_database_path) {
     for (const std::string& path : outputs) {
-      if (!ExistsFile(path)) new_outputs_.push_back(path);
+      if (!ExistsFile(path)) new_paths_.push_back(path);
+    }
+    for (const std::string& path : {database_path, real_database_path}) {
+      for (const std::string& side_path : SideFiles(path)) {
+        existing_.insert(side_path);
+      }
     }
   }
 
-  void RemoveOutputs() const {
-    for (const std::string& path : new_outputs_) {
-      std::remove(path.c_str());
+  void RemoveCreated() const {
+    std::error_code ec;
+    for (const std::string& path : new_paths_) {
+      std::filesystem::remove(path, ec);
     }
+    for (const std::string& path : SideFiles(database_path_)) {
+      if (existing_.count(path) == 0 && !IsSqliteSideFile(path)) {
+        std::filesystem::remove(path, ec);
+      }
+    }
+    RemoveSqliteSideFiles();
   }
 
   void RemoveSqliteSideFiles() const {
+    const std::string wal_path = database_path_ + "-wal";
+    const std::string shm_path = database_path_ + "-shm";
     std::error_code ec;
-    if (created_wal_ && std::filesystem::is_regular_file(wal_path_, ec) &&
-        std::filesystem::file_size(wal_path_, ec) == 0) {
-      std::filesystem::remove(wal_path_, ec);
+    if (existing_.count(wal_path) == 0 &&
+        std::filesystem::is_regular_file(wal_path, ec) &&
+        std::filesystem::file_size(wal_path, ec) == 0) {
+      std::filesystem::remove(wal_path, ec);
     }
-    if (created_shm_ && !ExistsFile(wal_path_)) {
-      std::filesystem::remove(shm_path_, ec);
+    if (existing_.count(shm_path) == 0 && !ExistsFile(wal_path)) {
+      std::filesystem::remove(shm_path, ec);
     }
   }
 
  private:
-  std::string wal_path_;
-  std::string shm_path_;
-  bool created_wal_;
-  bool created_shm_;
-  std::vector<std::string> new_outputs_;
+  // Regular files "<path>.*" and "<path>-*" beside path.
+  static std::vector<std::string> SideFiles(const std::string& path) {
+    const std::filesystem::path file(path);
+    const std::string name = file.filename().string();
+    const std::filesystem::path dir =
+        file.has_parent_path() ? file.parent_path() : ".";
+    std::vector<std::string> paths;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+      const std::string other = entry.path().filename().string();
+      if (other.size() > name.size() && StringStartsWith(other, name) &&
+          (other[name.size()] == '.' || other[name.size()] == '-') &&
+          entry.is_regular_file(ec)) {
+        paths.push_back((dir / other).string());
+      }
+    }
+    return paths;
+  }
+
+  bool IsSqliteSideFile(const std::string& path) const {
+    return path == database_path_ + "-wal" || path == database_path_ + "-shm";
+  }
+
+  std::string database_path_;
+  std::vector<std::string> new_paths_;
+  std::set<std::string> existing_;
 };
 
 }  // namespace
@@ -108,6 +143,12 @@ GcnMatchingReport ChooseAndMatchPairs(const std::string& database_path,
                                       const std::string& log_path,
                                       const GcnMatchingOptions& options,
                                       std::unique_ptr<ColmapRunner>* colmap) {
+  // COLMAP is looked for before minutes of pairing, not after.
+  ColmapRunnerOptions runner_options;
+  runner_options.log_path = log_path;
+  runner_options.verbose = options.matching.verbose;
+  *colmap = std::make_unique<ColmapRunner>(runner_options);
+
   GcnMatchingReport report;
   report.pairing = options.pairing;
   const Timer pairing_timer;
@@ -136,11 +177,6 @@ GcnMatchingReport ChooseAndMatchPairs(const std::string& database_path,
   const std::string warning = generator->Warning();
   if (!warning.empty()) LOG(WARNING) << warning;
   report.pairing_seconds = pairing_timer.ElapsedSeconds();
-
-  ColmapRunnerOptions runner_options;
-  runner_options.log_path = log_path;
-  runner_options.verbose = options.matching.verbose;
-  *colmap = std::make_unique<ColmapRunner>(runner_options);
 
   PairMatchingOptions matching_options;
   matching_options.pairs_path = options.matching.pairs_path;
@@ -178,12 +214,11 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   CheckDatabaseWritable(real_path);
   const ScopedFileLock lock(DatabaseLockPath(real_path), database_path);
   const RunFiles run_files(
+      database_path,
       real_path,
       {log_path,
        options.matching.pairs_path.empty() ? database_path + ".pairs.txt"
-                                           : options.matching.pairs_path,
-       DefaultEmbeddingCachePath(database_path),
-       DefaultCnnCachePath(database_path)});
+                                           : options.matching.pairs_path});
   std::unique_ptr<ColmapRunner> colmap;
   try {
     GcnMatchingReport report =
@@ -191,8 +226,11 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
     run_files.RemoveSqliteSideFiles();
     return report;
   } catch (...) {
-    if (colmap == nullptr || colmap->NumRuns() == 0) run_files.RemoveOutputs();
-    run_files.RemoveSqliteSideFiles();
+    if (colmap == nullptr || colmap->NumRuns() == 0) {
+      run_files.RemoveCreated();
+    } else {
+      run_files.RemoveSqliteSideFiles();
+    }
     throw;
   }
 }

@@ -3,6 +3,8 @@
 // option (or file) and the offending value, nothing done before the check.
 // Only the cases that must run COLMAP to fail skip without it.
 
+#include <filesystem>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,9 +32,9 @@ struct CommandResult {
   std::string err;
 };
 
-// Runs `colmap <args>` with the build's bin dir first on PATH, stdout and
-// stderr captured separately.
-CommandResult RunColmap(const std::string& args) {
+// Runs `colmap <args>` with the build's bin dir first on PATH (and env,
+// "NAME=value ...", set), stdout and stderr captured separately.
+CommandResult RunColmap(const std::string& args, const std::string& env = "") {
   TemporaryDirectory io("colmap_gcn_bad_input_io");
   const std::string out_path = JoinPaths(io.Path(), "out");
   const std::string err_path = JoinPaths(io.Path(), "err");
@@ -40,7 +42,7 @@ CommandResult RunColmap(const std::string& args) {
       FrontendExe().substr(0, FrontendExe().find_last_of('/'));
   CommandResult result;
   result.exit_code =
-      RunShell("{ PATH=" + ShellQuote(bin_dir) + ":$PATH " +
+      RunShell("{ " + env + " PATH=" + ShellQuote(bin_dir) + ":$PATH " +
                ShellQuote(FrontendExe()) + " " + args + " >" +
                ShellQuote(out_path) + " 2>" + ShellQuote(err_path) + "; }");
   result.out = ExistsFile(out_path) ? ReadTextFile(out_path) : "";
@@ -311,6 +313,75 @@ TEST_F(BadInput, MatcherWorkerThreadErrorIsOneLine) {
       "--GcnMatching.embedding_path " +
           ShellQuote(embedding_path),
       {"descriptors have 128 columns, the VLAD codebook 64"});
+}
+
+TEST_F(BadInput, MatcherImportedPairsFileWithoutPairs) {
+  const std::string empty = Path("empty_pairs.txt");
+  WriteFileAtomically(empty, "");
+  ExpectMatcherError(
+      "--GcnMatching.pairing imported "
+      "--GcnMatching.match_list_path " +
+          ShellQuote(empty),
+      {empty, "lists no image pairs; nothing to match"});
+  const std::string self = Path("self_pairs.txt");
+  WriteFileAtomically(self, "image0.jpg image0.jpg\nimage1.jpg image1.jpg\n");
+  ExpectMatcherError(
+      "--GcnMatching.pairing imported --GcnMatching.match_list_path " +
+          ShellQuote(self),
+      {self,
+       "lists only pairs of an image with itself (2 lines); nothing to "
+       "match"});
+}
+
+// The files in a folder, sorted.
+std::vector<std::string> FolderListing(const std::string& path) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(path)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A run that fails after pairing but before COLMAP wrote anything has
+// nothing to resume: it leaves no pairs file, embedding cache, working copy
+// or SQLite side file behind, for every kind of pairing. The failure: an
+// image name COLMAP's pairs file cannot hold, found when the first pairs
+// are written (COLMAP itself is a stand-in that never gets to run).
+TEST_F(BadInput, MatcherFailingBeforeColmapLeavesNoFiles) {
+  const std::string colmap = Path("colmap");
+  WriteFileAtomically(colmap, "#!/bin/sh\necho 'COLMAP 3.8 (stand-in)'\n");
+  ASSERT_EQ(RunShell("chmod +x " + ShellQuote(colmap)), 0);
+  const std::string path = Path("spaced_name.db");
+  std::vector<std::pair<std::string, FeatureDescriptors>> images;
+  for (int i = 0; i < 4; ++i) {
+    images.emplace_back("image " + std::to_string(i) + ".jpg",
+                        test::RandomDescriptors(40, 4, 20 + i));
+  }
+  test::CreateDescriptorDatabase(path, images);
+  const std::string before = ReadTextFile(path);
+  const std::vector<std::string> listing = FolderListing(dir_->Path());
+  for (const std::string pairing : {"gcn", "knn", "exhaustive", "adaptive"}) {
+    const CommandResult result = RunColmap(
+        "gcn_matcher --database_path " + ShellQuote(path) +
+            " --GcnMatching.pairing " + pairing + " --GcnMatching.k 2",
+        "COLMAP_EXE=" + ShellQuote(colmap));
+    EXPECT_EQ(result.exit_code, 1) << pairing << ": " << result.err;
+    // Warnings may come first; the error is the one last line.
+    const std::vector<std::string> lines =
+        StringSplit(StringTrim(result.err), "\n");
+    EXPECT_TRUE(StringStartsWith(lines.back(), "ERROR: image name \"image "))
+        << pairing << ": " << result.err;
+    EXPECT_EQ(std::count_if(lines.begin(),
+                            lines.end(),
+                            [](const std::string& line) {
+                              return StringStartsWith(line, "ERROR:");
+                            }),
+              1)
+        << result.err;
+    EXPECT_EQ(FolderListing(dir_->Path()), listing) << pairing;
+    EXPECT_EQ(ReadTextFile(path), before) << pairing;
+  }
 }
 
 // --- gcn_reconstructor ------------------------------------------------------
