@@ -80,6 +80,13 @@ void BuildVocabTree(const ColmapRunner& colmap,
               std::to_string(std::min(options.branching, num_words)),
               "--num_iterations",
               std::to_string(options.num_iterations)});
+  // COLMAP writes the tree unchecked; on a full disk it is missing or empty.
+  std::error_code ec;
+  if (!ExistsFile(tmp_tree) || std::filesystem::file_size(tmp_tree, ec) == 0) {
+    ThrowError("colmap vocab_tree_builder exited 0 but wrote no tree to ",
+               tmp_tree,
+               " (is the disk full?)");
+  }
   std::filesystem::copy_file(tmp_tree,
                              output_path + ".tmp",
                              std::filesystem::copy_options::overwrite_existing);
