@@ -66,7 +66,8 @@ void FakeColmap::SetExtractedImages(const int num_images) const {
   const std::string path = JoinPaths(dir_, "template.db");
   RemoveDatabaseFiles(path);
   std::string sql = std::string(kColmap38Schema) +
-                    "INSERT INTO cameras VALUES (1, 0, 640, 480, NULL, 0);";
+                    "INSERT INTO cameras VALUES (1, 0, 640, 480, "
+                    "x'0000000000407F4000000000000074400000000000006E40', 0);";
   for (int i = 1; i <= num_images; ++i) {
     sql += "INSERT INTO images (image_id, name, camera_id) VALUES (" +
            std::to_string(i) + ", 'img" + std::to_string(i) + ".jpg', 1);";
