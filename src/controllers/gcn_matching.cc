@@ -5,6 +5,8 @@
 #include <set>
 
 #include "controllers/colmap_runner.h"
+#include "scene/database_copy.h"
+#include "scene/database_validation.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -157,12 +159,18 @@ GcnMatchingReport ChooseAndMatchPairs(const std::string& database_path,
   std::unique_ptr<PairGenerator> generator;
   {
     const Database database(database_path);
+    // Before any working copy: COLMAP aborts on such a database, and every
+    // rerun would abort the same way.
+    ValidateDatabaseForColmap(database);
     report.num_images = database.NumImages();
+    if (report.num_images == 0) {
+      ThrowError(database_path,
+                 " has 0 images; run colmap feature_extractor first");
+    }
     if (report.num_images < 2) {
       ThrowError(database_path,
-                 " has ",
-                 report.num_images,
-                 " image(s); run colmap feature_extractor first");
+                 " has 1 image; matching needs at least 2 (add images and "
+                 "extract their features into it)");
     }
     if (database.NumDescriptors() == 0) {
       ThrowError(database_path,
@@ -211,6 +219,9 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   // Refused before minutes of pairing: a database we cannot replace, or one
   // that another gcn_matcher is working on (the lock spans the whole run).
   const std::string real_path = ResolveDatabasePath(database_path);
+  // A crashed writer's rollback journal makes every read-only open fail; one
+  // that cannot be rolled back is named before the file's permissions.
+  RecoverHotJournal(database_path);
   CheckDatabaseWritable(real_path);
   const ScopedFileLock lock(DatabaseLockPath(real_path), database_path);
   const RunFiles run_files(

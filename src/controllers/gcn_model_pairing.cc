@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 
 #include "gcn/model_file.h"
 #include "retrieval/descriptor_import.h"
@@ -242,11 +243,21 @@ namespace {
 // model that kept every candidate.
 class GcnModelPairGenerator : public GcnPairGenerator {
  public:
-  using GcnPairGenerator::GcnPairGenerator;
+  GcnModelPairGenerator(const GcnPairingOptions& options,
+                        const std::vector<image_t>& image_ids,
+                        const EmbeddingMatrix& embeddings,
+                        const GcnModel& model,
+                        const bool threshold_from_flag)
+      : GcnPairGenerator(options, image_ids, embeddings, model),
+        threshold_from_flag_(threshold_from_flag) {}
 
   std::string Warning() const override {
-    return GcnKeptEveryCandidateWarning(Stats(), Options().k1);
+    return GcnKeptEveryCandidateWarning(
+        Stats(), Options().k1, Options().threshold, threshold_from_flag_);
   }
+
+ private:
+  bool threshold_from_flag_;
 };
 
 }  // namespace
@@ -280,20 +291,32 @@ std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
   const EmbeddingMatrix embeddings = ComputeModelEmbeddings(
       model, database, embedding, options.image_path, &image_ids);
   return std::make_unique<GcnModelPairGenerator>(
-      pairing, image_ids, embeddings, model);
+      pairing, image_ids, embeddings, model, options.threshold >= 0);
 }
 
-std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1) {
+std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats,
+                                         const int k1,
+                                         const double threshold,
+                                         const bool threshold_from_flag) {
   if (stats.num_candidates == 0 ||
       stats.num_above_threshold < stats.num_candidates) {
     return "";
   }
-  return "all " + std::to_string(stats.num_candidates) +
-         " candidate pairs scored above the model's threshold: the GCN "
-         "chose nothing beyond each image's k1 = " +
-         std::to_string(k1) +
-         " nearest neighbours; the model is likely not calibrated for "
-         "these images (docs/model_card.md lists what to try)";
+  std::ostringstream threshold_text;
+  threshold_text << threshold;
+  const std::string kept = "all " + std::to_string(stats.num_candidates) +
+                           " candidate pairs scored above ";
+  const std::string chose =
+      ": the GCN chose nothing beyond each image's k1 = " + std::to_string(k1) +
+      " nearest neighbours; ";
+  if (threshold_from_flag) {
+    return kept + "--GcnMatching.threshold " + threshold_text.str() + chose +
+           "a higher --GcnMatching.threshold keeps fewer (docs/model_card.md "
+           "lists what to try)";
+  }
+  return kept + "the model's threshold " + threshold_text.str() + chose +
+         "the model is likely not calibrated for these images "
+         "(docs/model_card.md lists what to try)";
 }
 
 PairGeneratorSpec<GcnModelPairingOptions> GcnModelPairGeneratorSpec() {

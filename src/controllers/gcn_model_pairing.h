@@ -157,7 +157,12 @@ std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
 // model does on images unlike its training scenes (all real photo sets
 // for the default model, docs/model_card.md), and on scenes with
 // duplicate structure it admits the pairs that fold models. "" otherwise.
-std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats, int k1);
+// The threshold is named by where it came from: the model file, or
+// --GcnMatching.threshold (threshold_from_flag).
+std::string GcnKeptEveryCandidateWarning(const GcnPairingStats& stats,
+                                         int k1,
+                                         double threshold,
+                                         bool threshold_from_flag);
 
 // --GcnMatching.pairing gcn (--GcnMatching.model_path, k1, k2, u,
 // threshold, min_pairs_per_image, descriptor_path, embedding, onnx_path,

@@ -21,6 +21,8 @@ class VerificationTable {
   PairVerification Lookup(image_t image_id1, image_t image_id2) const;
   const std::string& Name(image_t image_id) const;
   const std::vector<DatabaseImage>& Images() const { return images_; }
+  // Rows of two_view_geometries (0: the database was never matched).
+  size_t NumGeometries() const { return geometries_.size(); }
   // A merged collection ("<scene>__<name>" images, collection.h).
   bool IsCollection() const { return is_collection_; }
   // The pairs COLMAP verified with at least strong_cut inliers (image-id

@@ -25,6 +25,7 @@
 #include "evaluation/report.h"
 #include "feature/pairs_io.h"
 #include "scene/database_copy.h"
+#include "scene/database_validation.h"
 #include "scene/reconstruction_stats.h"
 #include "synthetic/pair_overlap.h"
 #include "util/error.h"
@@ -644,7 +645,11 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
   result.kind = scene.dataset.kind;
   Extract(&scene, &result);
   {
+    // A cached base.db is read before every method hands a copy of it to
+    // COLMAP's matcher and mapper.
+    RecoverHotJournal(scene.base_db);
     const Database database(scene.base_db);
+    ValidateDatabaseForColmap(database);
     scene.images = database.ReadAllImages();
   }
   for (const DatabaseImage& image : scene.images) {

@@ -9,6 +9,7 @@
 #include "controllers/gcn_matching.h"
 #include "evaluation/adaptive_simulation.h"
 #include "exe/gcn_matcher.h"
+#include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/option_manager.h"
@@ -107,8 +108,18 @@ int RunGcnAdaptiveSimulator(int argc, char** argv) {
   options.generators.Get<KnnPairingOptions>("knn").descriptors.use_cache =
       false;
 
+  RecoverHotJournal(database_path);
   const Database database(database_path);
   const VerificationTable table(database);
+  // Without verifications every replayed pair would count as failed and the
+  // table would be all zeros.
+  if (table.NumGeometries() == 0) {
+    ThrowError("database ",
+               database_path,
+               " was never matched (its two_view_geometries table is empty); "
+               "gcn_adaptive_simulator replays verification from it: run "
+               "colmap exhaustive_matcher on it first");
+  }
   std::unique_ptr<PairLabels> labels;
   if (!labels_path.empty()) {
     labels = std::make_unique<PairLabels>(PairLabels::Read(labels_path));

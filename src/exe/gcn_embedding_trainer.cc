@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "retrieval/vlad.h"
+#include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -51,6 +52,7 @@ int RunGcnEmbeddingTrainer(int argc, char** argv) {
   if (paths.empty()) {
     ThrowError("--database_paths lists no database");
   }
+  for (const std::string& path : paths) RecoverHotJournal(path);
   const Timer timer;
   const VladEmbedding embedding = TrainVladEmbedding(paths, options);
   embedding.Write(output_path);

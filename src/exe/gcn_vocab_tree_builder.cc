@@ -7,6 +7,7 @@
 #include "controllers/colmap_runner.h"
 #include "controllers/gcn_matching.h"
 #include "controllers/vocab_tree_pairing.h"
+#include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -44,6 +45,7 @@ int RunGcnVocabTreeBuilder(int argc, char** argv) {
   if (paths.empty()) {
     ThrowError("--database_paths lists no database");
   }
+  for (const std::string& path : paths) RecoverHotJournal(path);
   const Timer timer;
   BuildVocabTree(ColmapRunner(runner_options), paths, output_path, options);
   std::cout << "vocabulary tree from " << paths.size()

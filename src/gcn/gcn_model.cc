@@ -79,7 +79,9 @@ void GcnModel::Check() const {
 
 void GcnModel::CheckEmbeddingDimension(int dim) const {
   if (dim != EmbeddingDim()) {
-    ThrowError("the GCN model expects ",
+    ThrowError("the GCN model ",
+               source.empty() ? "" : source + " ",
+               "expects ",
                EmbeddingDim(),
                "-dimensional embeddings (type '",
                embedding.type,

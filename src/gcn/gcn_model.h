@@ -174,6 +174,9 @@ struct GcnModel {
   GcnParameters<float> params;
   GcnEmbeddingConfig embedding;
   GcnModelInfo info;
+  // The file the model was read from, for messages ("" for a model made in
+  // memory); not stored in the file.
+  std::string source;
 
   // Throws Error if the sizes are inconsistent.
   void Check() const;

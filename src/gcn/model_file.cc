@@ -369,7 +369,12 @@ GcnModel DeserializeGcnModel(const std::string& bytes,
     model.info.notes = r.GetString();
     r.ExpectEnd();
   }
-  model.Check();
+  model.source = source;
+  try {
+    model.Check();
+  } catch (const Error& error) {
+    ThrowError("GCN model file ", source, ": ", error.what());
+  }
   return model;
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "scene/camera_models.h"
+#include "scene/database_copy.h"
 #include "scene/sqlite_statement.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -130,7 +131,13 @@ void Database::DetectSchema() {
       rc = SQLITE_OK;
     }
     const std::string message = sqlite3_errmsg(db_);
+    const int extended_rc = sqlite3_extended_errcode(db_);
     sqlite3_finalize(stmt);
+    // SQLite reports a hot journal on a read-only connection as "attempt to
+    // write a readonly database", which would send users after permissions.
+    if (extended_rc == SQLITE_READONLY_ROLLBACK) {
+      ThrowError(HotJournalMessage(path_));
+    }
     if (rc == SQLITE_NOTADB) {
       ThrowError(path_, " is not a COLMAP database (not an SQLite file)");
     }

@@ -128,6 +128,10 @@ class Database {
   void UpdateCamera(const DatabaseCamera& camera);
 
  protected:
+  // The check of every row COLMAP relies on reads tables this class has no
+  // reader for.
+  friend void ValidateDatabaseForColmap(const Database& database);
+
   // For test readers (tests/scene/database_inspector.h) that need tables the
   // library itself never reads; owned by this object.
   sqlite3* Handle() const { return db_; }

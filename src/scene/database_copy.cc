@@ -11,6 +11,7 @@
 
 #include "scene/database.h"
 #include "util/error.h"
+#include "util/logging.h"
 
 namespace colmap_gcn {
 namespace {
@@ -134,6 +135,79 @@ void CheckpointDatabase(const std::string& path) {
   if (rc != SQLITE_OK) {
     ThrowError("cannot checkpoint ", path, ": ", db.Error());
   }
+}
+
+namespace {
+
+// Writable as SQLite's rollback needs it: the file is rewritten and the
+// journal beside it deleted. A missing write bit counts even for root, who
+// passes access() regardless, so that a file made read-only stays unchanged.
+bool IsWritableWithFolder(const std::string& path) {
+  const std::string parent = std::filesystem::path(path).parent_path().string();
+  const std::string dir = parent.empty() ? "." : parent;
+  struct stat info;
+  struct stat dir_info;
+  return stat(path.c_str(), &info) == 0 && (info.st_mode & 0222) != 0 &&
+         access(path.c_str(), W_OK) == 0 && stat(dir.c_str(), &dir_info) == 0 &&
+         (dir_info.st_mode & 0222) != 0 &&
+         access(dir.c_str(), W_OK | X_OK) == 0;
+}
+
+// Whether a read-only connection can read path, or SQLite refuses because a
+// hot journal must be rolled back first. Other failures are left to the
+// Database that opens path next, which names them.
+bool NeedsRollback(const std::string& path) {
+  sqlite3* db = nullptr;
+  bool needs_rollback = false;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) ==
+      SQLITE_OK) {
+    sqlite3_busy_timeout(db, kBusyTimeoutMs);
+    sqlite3_stmt* stmt = nullptr;
+    if (sqlite3_prepare_v2(
+            db, "SELECT count(*) FROM sqlite_master;", -1, &stmt, nullptr) ==
+        SQLITE_OK) {
+      sqlite3_step(stmt);
+    }
+    needs_rollback = sqlite3_extended_errcode(db) == SQLITE_READONLY_ROLLBACK;
+    sqlite3_finalize(stmt);
+  }
+  sqlite3_close(db);
+  return needs_rollback;
+}
+
+}  // namespace
+
+std::string HotJournalMessage(const std::string& path) {
+  return path +
+         "-journal is the rollback journal of a transaction a crashed "
+         "program left unfinished; SQLite must roll it back before " +
+         path + " can be read: make " + path +
+         " and its folder writable and run again, or open it once with "
+         "`sqlite3 " +
+         path + " 'PRAGMA integrity_check;'` as its owner";
+}
+
+void RecoverHotJournal(const std::string& path) {
+  // SQLite keeps the journal beside the real file.
+  std::error_code ec;
+  const std::filesystem::path real = std::filesystem::canonical(path, ec);
+  if (ec) return;
+  const std::string db_path = real.string();
+  struct stat journal;
+  if (stat((db_path + "-journal").c_str(), &journal) != 0 ||
+      journal.st_size == 0 || !NeedsRollback(db_path)) {
+    return;
+  }
+  if (!IsWritableWithFolder(db_path)) ThrowError(HotJournalMessage(path));
+  {
+    const Connection db(db_path, SQLITE_OPEN_READWRITE);
+    db.QueryText("SELECT count(*) FROM sqlite_master;");
+  }
+  if (NeedsRollback(db_path)) ThrowError(HotJournalMessage(path));
+  LOG(WARNING) << path
+               << " had an unfinished transaction of a program that crashed "
+                  "(its rollback journal "
+               << path << "-journal); SQLite rolled it back";
 }
 
 std::string CheckDatabaseIntegrity(const std::string& path) {

@@ -29,6 +29,21 @@ void CopyDatabase(const std::string& source_path,
 // Throws Error when another program keeps the log busy.
 void CheckpointDatabase(const std::string& path);
 
+// Rolls back the hot journal a crashed writer left beside path: a non-empty
+// "<path>-journal" of a database in rollback-journal mode (journal_mode
+// DELETE, as hloc, pycolmap and older COLMAP write) that no connection holds.
+// Until SQLite rolls it back, every read-only open fails with "attempt to
+// write a readonly database". When the database and its folder are writable
+// (a write permission bit is required even for root), the database is opened
+// read-write once and read, which makes SQLite roll the journal back, and a
+// warning is logged; otherwise throws Error saying what the journal is and
+// how to recover. Does nothing when there is no such journal, or when SQLite
+// reads the database without a rollback (the journal's writer is alive).
+void RecoverHotJournal(const std::string& path);
+
+// The one-line explanation of a hot journal that cannot be rolled back.
+std::string HotJournalMessage(const std::string& path);
+
 // SQLite's structural check (PRAGMA quick_check) on the database opened
 // read-write, so that a write-ahead log of its own is replayed first.
 // Returns "" when it is sound, else the first problem SQLite reports.

@@ -84,15 +84,37 @@ void CheckDatabaseWritable(const std::string& database_path) {
   if (stat(database_path.c_str(), &info) != 0) {
     ThrowError("database ", database_path, " does not exist");
   }
-  if ((info.st_mode & 0222) == 0 || access(database_path.c_str(), W_OK) != 0) {
+  const bool no_write_bit = (info.st_mode & 0222) == 0;
+  if (no_write_bit || access(database_path.c_str(), W_OK) != 0) {
+    const int access_errno = no_write_bit ? 0 : errno;
     char mode[8];
     std::snprintf(mode, sizeof(mode), "%04o", info.st_mode & 07777);
+    // chmod u+w only helps its owner when the owner's bit is what is missing.
+    const uid_t uid = geteuid();
+    if (info.st_uid == uid && (info.st_mode & 0200) == 0) {
+      ThrowError("database ",
+                 database_path,
+                 " is read-only (mode ",
+                 mode,
+                 "); matching writes into it, so make it writable "
+                 "(chmod u+w) or match a copy");
+    }
+    if (access_errno == EROFS) {
+      ThrowError("database ",
+                 database_path,
+                 " is on a read-only file system; matching writes into it, "
+                 "so match a copy on a writable one");
+    }
     ThrowError("database ",
                database_path,
-               " is read-only (mode ",
+               " (mode ",
                mode,
-               "); matching writes into it, so make it writable "
-               "(chmod u+w) or match a copy");
+               ") is owned by uid ",
+               info.st_uid,
+               ", not writable by uid ",
+               uid,
+               "; matching writes into it, so run as a user who may write "
+               "it or match a copy");
   }
   const std::string dir = fs::path(database_path).parent_path().string();
   struct stat dir_info;

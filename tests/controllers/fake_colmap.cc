@@ -84,7 +84,8 @@ void FakeColmap::SetExtractedImages(const int num_images) const {
   const std::string path = JoinPaths(dir_, "template.db");
   RemoveDatabaseFiles(path);
   std::string sql = std::string(kColmap38Schema) +
-                    "INSERT INTO cameras VALUES (1, 0, 640, 480, NULL, 0);";
+                    "INSERT INTO cameras VALUES (1, 0, 640, 480, "
+                    "x'0000000000407F4000000000000074400000000000006E40', 0);";
   for (int i = 1; i <= num_images; ++i) {
     const std::string id = std::to_string(i);
     // Zero features each: rows as COLMAP writes them for a featureless

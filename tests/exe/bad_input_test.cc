@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "frontend_command.h"
 #include "retrieval/vlad.h"
 #include "retrieval_test_utils.h"
 #include "test_utils.h"
@@ -22,47 +23,11 @@
 namespace colmap_gcn {
 namespace {
 
-using test::FrontendExe;
+using test::CommandResult;
+using test::ExpectOneLineError;
 using test::RealColmapExe;
+using test::RunColmap;
 using test::RunShell;
-
-struct CommandResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs `colmap <args>` with the build's bin dir first on PATH (and env,
-// "NAME=value ...", set), stdout and stderr captured separately.
-CommandResult RunColmap(const std::string& args, const std::string& env = "") {
-  TemporaryDirectory io("colmap_gcn_bad_input_io");
-  const std::string out_path = JoinPaths(io.Path(), "out");
-  const std::string err_path = JoinPaths(io.Path(), "err");
-  const std::string bin_dir =
-      FrontendExe().substr(0, FrontendExe().find_last_of('/'));
-  CommandResult result;
-  result.exit_code =
-      RunShell("{ " + env + " PATH=" + ShellQuote(bin_dir) + ":$PATH " +
-               ShellQuote(FrontendExe()) + " " + args + " >" +
-               ShellQuote(out_path) + " 2>" + ShellQuote(err_path) + "; }");
-  result.out = ExistsFile(out_path) ? ReadTextFile(out_path) : "";
-  result.err = ExistsFile(err_path) ? ReadTextFile(err_path) : "";
-  return result;
-}
-
-// Exit 1, stderr one "ERROR: " line holding every needle (the flag, the
-// value, the allowed range...).
-void ExpectOneLineError(const CommandResult& result,
-                        const std::vector<std::string>& needles) {
-  EXPECT_EQ(result.exit_code, 1) << result.err;
-  EXPECT_TRUE(StringStartsWith(result.err, "ERROR: ")) << result.err;
-  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1)
-      << result.err;
-  for (const std::string& needle : needles) {
-    EXPECT_NE(result.err.find(needle), std::string::npos)
-        << "missing \"" << needle << "\" in: " << result.err;
-  }
-}
 
 // A small valid database (3 images with descriptors) per test.
 class BadInput : public testing::Test {

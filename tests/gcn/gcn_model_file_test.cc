@@ -98,6 +98,26 @@ TEST(GcnModelFile, RoundTripThroughFile) {
   EXPECT_EQ(SerializeGcnModel(loaded), SerializeGcnModel(model));
 }
 
+// gcn_matcher may hold several models (--GcnMatching.model_path, the
+// default one): a dimension mismatch names the file read.
+TEST(GcnModelFile, EmbeddingDimensionErrorNamesTheModelFile) {
+  TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "model.gcnmodel");
+  WriteGcnModel(path, MakeModel());
+  const GcnModel loaded = ReadGcnModel(path);
+  EXPECT_EQ(loaded.source, path);
+  EXPECT_NO_THROW(loaded.CheckEmbeddingDimension(12));
+  try {
+    loaded.CheckEmbeddingDimension(256);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "the GCN model " + path +
+                  " expects 12-dimensional embeddings (type 'vlad') but got "
+                  "256-dimensional ones");
+  }
+}
+
 TEST(GcnModelFile, FeatureScalingRoundTripAndOnlyWrittenWhenUsed) {
   GcnModel model = MakeModel();
   const std::string plain = SerializeGcnModel(model);

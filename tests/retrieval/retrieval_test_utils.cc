@@ -11,10 +11,12 @@ namespace colmap_gcn {
 namespace test {
 namespace {
 
-// A 3.8 database with one camera.
+// A 3.8 database with one SIMPLE_PINHOLE camera (f 500, principal point
+// (320, 240)): COLMAP aborts on a camera without its parameters.
 const std::string kSchema =
     std::string(kColmap38Schema) +
-    "INSERT INTO cameras VALUES (1, 0, 640, 480, NULL, 0);\n";
+    "INSERT INTO cameras VALUES (1, 0, 640, 480, "
+    "x'0000000000407F4000000000000074400000000000006E40', 0);\n";
 
 void Check(int code, sqlite3* db) {
   if (code != SQLITE_OK && code != SQLITE_DONE && code != SQLITE_ROW) {

@@ -2,6 +2,7 @@
 // direct SQL on the same file.
 #include <sys/stat.h>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "scene/colmap_scene_fixture.h"
 #include "scene/database.h"
 #include "scene/database_inspector.h"
+#include "scene/database_validation.h"
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -74,6 +76,42 @@ std::vector<std::string>* ColmapDatabase::names_ = nullptr;
 std::string* ColmapDatabase::database_path_ = nullptr;
 std::string* ColmapDatabase::log_ = nullptr;
 bool ColmapDatabase::ok_ = false;
+
+// The message of ValidateDatabaseForColmap on path, "" when it passes.
+std::string Problem(const std::string& path) {
+  try {
+    ValidateDatabaseForColmap(Database(path));
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// What COLMAP itself wrote passes the checks made for it: no false alarms.
+TEST_F(ColmapDatabase, PassesTheChecksForColmap) {
+  EXPECT_EQ(Problem(Path()), "");
+}
+
+// Why the check is made: COLMAP 3.8 verifying a pair of an image whose
+// camera was deleted aborts (std::out_of_range) instead of reporting it.
+TEST_F(ColmapDatabase, ColmapAbortsOnAnImageOfADeletedCamera) {
+  TemporaryDirectory dir("scene_colmap_db_broken");
+  const std::string broken = JoinPaths(dir.Path(), "broken.db");
+  std::filesystem::copy_file(Path(), broken);
+  test::ExecuteSql(broken,
+                   "DELETE FROM matches; DELETE FROM two_view_geometries;"
+                   "UPDATE images SET camera_id = 7 WHERE image_id = 2;");
+  EXPECT_NE(Problem(broken).find("refers to camera 7"), std::string::npos);
+  std::string output;
+  EXPECT_NE(test::RunShell(test::RealColmapExe() +
+                               " exhaustive_matcher --SiftMatching.use_gpu 0 "
+                               "--database_path " +
+                               broken,
+                           &output),
+            0)
+      << output;
+  EXPECT_NE(output.find("out_of_range"), std::string::npos) << output;
+}
 
 TEST_F(ColmapDatabase, CountsMatchSql) {
   DatabaseInspector database(Path());

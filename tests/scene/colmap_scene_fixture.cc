@@ -1,6 +1,8 @@
 #include "scene/colmap_scene_fixture.h"
 
 #include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -180,6 +182,32 @@ void LeaveCommittedDataInWal(const std::string& database_path,
   sqlite3_close(db);
   if (fs::file_size(crashed_path + "-wal") == 0) {
     ThrowError("test: nothing was left in ", crashed_path, "-wal");
+  }
+}
+
+void LeaveHotJournal(const std::string& database_path, const std::string& sql) {
+  // A child process, so that the writer really dies holding the
+  // transaction: its locks go with it and only the journal stays.
+  const pid_t pid = fork();
+  if (pid < 0) ThrowError("test: fork failed");
+  if (pid == 0) {
+    sqlite3* db = nullptr;
+    const std::string all_sql =
+        "PRAGMA journal_mode=DELETE; PRAGMA cache_size=1; BEGIN;" + sql;
+    const bool ok =
+        sqlite3_open(database_path.c_str(), &db) == SQLITE_OK &&
+        sqlite3_exec(db, all_sql.c_str(), nullptr, nullptr, nullptr) ==
+            SQLITE_OK;
+    _exit(ok ? 0 : 1);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    ThrowError("test: the crashing writer failed on ", database_path);
+  }
+  std::error_code ec;
+  if (std::filesystem::file_size(database_path + "-journal", ec) == 0 || ec) {
+    ThrowError("test: no hot journal was left beside ", database_path);
   }
 }
 

@@ -45,5 +45,12 @@ void LeaveCommittedDataInWal(const std::string& database_path,
                              const std::string& sql,
                              const std::string& crashed_path);
 
+// What a writer in rollback-journal mode (journal_mode DELETE) that crashed
+// inside a transaction leaves: it runs sql after BEGIN in a child process
+// with a one-page cache, so changed pages reach the database file, and the
+// child exits without committing. "<database_path>-journal" is then a hot
+// journal. Throws Error when no journal is left.
+void LeaveHotJournal(const std::string& database_path, const std::string& sql);
+
 }  // namespace test
 }  // namespace colmap_gcn

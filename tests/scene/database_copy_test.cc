@@ -30,6 +30,7 @@ using test::ExecuteSql;
 using test::ExpectErrorContaining;
 using test::kColmap38Schema;
 using test::LeaveCommittedDataInWal;
+using test::LeaveHotJournal;
 using test::QuerySqlInt;
 
 // A COLMAP-layout database in WAL mode with `num_images` images.
@@ -263,6 +264,155 @@ TEST_F(DatabaseFiles, MissingDatabaseIsNamed) {
   fs::create_symlink(JoinPaths(dir_.Path(), "gone.db"), dangling);
   ExpectErrorContaining([&] { ResolveDatabasePath(dangling); },
                         "dangling.db does not exist");
+}
+
+// chmod u+w is only the answer for the file's owner when its own write bit is
+// missing. Root passes access() on any file, so as root the other case is a
+// file chowned to someone else without write bits (refused even for root);
+// as another user it is a file of root's.
+TEST_F(DatabaseFiles, ReadOnlyHintFitsWhoMayWriteTheFile) {
+  chmod(base_.c_str(), 0444);
+  try {
+    CheckDatabaseWritable(base_);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("(chmod u+w)"), std::string::npos)
+        << error.what();
+  }
+  std::string foreign = "/etc/passwd";
+  const uid_t uid = geteuid();
+  if (uid == 0) {
+    foreign = JoinPaths(dir_.Path(), "foreign.db");
+    CreateDatabase(foreign, 1);
+    ASSERT_EQ(chown(foreign.c_str(), 12345, 12345), 0);
+    chmod(foreign.c_str(), 0444);
+  }
+  struct stat info;
+  ASSERT_EQ(stat(foreign.c_str(), &info), 0);
+  ASSERT_NE(info.st_uid, uid);
+  try {
+    CheckDatabaseWritable(foreign);
+    ADD_FAILURE() << "no error for " << foreign;
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("is owned by uid " + std::to_string(info.st_uid) +
+                           ", not writable by uid " + std::to_string(uid)),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(message.find("chmod"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+// A database in rollback-journal mode, as hloc, pycolmap and older COLMAP
+// write, with a hot journal of a crashed writer beside it that renamed every
+// image and added a table.
+std::string CrashedRollbackJournalDatabase(const std::string& dir) {
+  const std::string path = JoinPaths(dir, "journal.db");
+  ExecuteSql(path,
+             std::string(kColmap38Schema) +
+                 "INSERT INTO cameras VALUES (1, 0, 640, 480, NULL, 0);"
+                 "INSERT INTO images (image_id, name, camera_id) VALUES "
+                 "(1, 'a.jpg', 1), (2, 'b.jpg', 1);");
+  LeaveHotJournal(path,
+                  "UPDATE images SET name = 'crashed_' || name;"
+                  "CREATE TABLE junk (x BLOB);"
+                  "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 "
+                  "FROM n WHERE i < 500) "
+                  "INSERT INTO junk SELECT randomblob(1000) FROM n;");
+  return path;
+}
+
+TEST(HotJournal, IsRolledBackWithAWarning) {
+  TemporaryDirectory dir("colmap_gcn_hot_journal");
+  const std::string path = CrashedRollbackJournalDatabase(dir.Path());
+  // What every read-only open meets, SQLite's own and ours.
+  ExpectErrorContaining(
+      [&] { QuerySqlInt(path, "SELECT COUNT(*) FROM images;"); },
+      "attempt to write a readonly database");
+  ExpectErrorContaining([&] { Database database(path); },
+                        path +
+                            "-journal is the rollback journal of a "
+                            "transaction a crashed program left "
+                            "unfinished");
+  test::LogLines log;
+  {
+    const ScopedLogSink sink(&log);
+    RecoverHotJournal(path);
+  }
+  ASSERT_EQ(log.size(), 1u);
+  EXPECT_NE(log[0].find("unfinished transaction"), std::string::npos) << log[0];
+  EXPECT_NE(log[0].find("rolled it back"), std::string::npos) << log[0];
+  EXPECT_FALSE(ExistsFile(path + "-journal"));
+  // The state before the crashed transaction.
+  EXPECT_EQ(QuerySqlInt(path,
+                        "SELECT COUNT(*) FROM images WHERE name LIKE "
+                        "'crashed_%';"),
+            0);
+  EXPECT_EQ(QuerySqlInt(path,
+                        "SELECT COUNT(*) FROM sqlite_master WHERE "
+                        "name = 'junk';"),
+            0);
+  EXPECT_EQ(Database(path).NumImages(), 2u);
+  EXPECT_EQ(CheckDatabaseIntegrity(path), "");
+  // Nothing left to do: no second warning.
+  {
+    const ScopedLogSink sink(&log);
+    RecoverHotJournal(path);
+  }
+  EXPECT_EQ(log.size(), 1u);
+}
+
+// Without write permission on the file (a missing write bit counts even for
+// root) or its folder, SQLite cannot roll back: the line says what the
+// journal is and how to recover, never just "read-only".
+TEST(HotJournal, WithoutWritePermissionIsExplained) {
+  TemporaryDirectory dir("colmap_gcn_hot_journal");
+  const std::string path = CrashedRollbackJournalDatabase(dir.Path());
+  const std::string before = ReadTextFile(path);
+  const std::string journal = ReadTextFile(path + "-journal");
+  const auto expect_refused = [&] {
+    try {
+      RecoverHotJournal(path);
+      ADD_FAILURE() << "no error";
+    } catch (const Error& error) {
+      const std::string message = error.what();
+      EXPECT_EQ(message, HotJournalMessage(path));
+      EXPECT_NE(message.find("make " + path + " and its folder writable"),
+                std::string::npos)
+          << message;
+      EXPECT_NE(
+          message.find("`sqlite3 " + path + " 'PRAGMA integrity_check;'`"),
+          std::string::npos)
+          << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    EXPECT_EQ(ReadTextFile(path), before);
+    EXPECT_EQ(ReadTextFile(path + "-journal"), journal);
+  };
+  chmod(path.c_str(), 0444);
+  expect_refused();
+  chmod(path.c_str(), 0644);
+  chmod(dir.Path().c_str(), 0555);
+  expect_refused();
+  chmod(dir.Path().c_str(), 0755);
+  RecoverHotJournal(path);
+  EXPECT_FALSE(ExistsFile(path + "-journal"));
+}
+
+TEST(HotJournal, NoJournalIsANoOp) {
+  TemporaryDirectory dir("colmap_gcn_hot_journal");
+  const std::string path = JoinPaths(dir.Path(), "plain.db");
+  ExecuteSql(path, kColmap38Schema);
+  const std::string before = ReadTextFile(path);
+  test::LogLines log;
+  {
+    const ScopedLogSink sink(&log);
+    RecoverHotJournal(path);
+    RecoverHotJournal(JoinPaths(dir.Path(), "missing.db"));
+  }
+  EXPECT_EQ(log.size(), 0u);
+  EXPECT_EQ(ReadTextFile(path), before);
 }
 
 // Runs fn in a child process; returns its exit code.
