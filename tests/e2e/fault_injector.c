@@ -17,10 +17,17 @@
 //   COLMAP_GCN_FAULT_ERRNO        ENOSPC (default), EIO, EDQUOT or a number
 //   COLMAP_GCN_FAULT_LOG          a file that gets one line per failed call
 //
-// A write that does not fit in what is left of the budget fails whole, and
-// from then on every write to those files fails: a disk that filled up stays
-// full. With EIO, fsync and fdatasync of those files fail too, as they do
-// after the kernel lost a page it could not write back.
+// A write that does not fit in what is left of the budget fails whole, as
+// on a disk with that much free space: with ENOSPC a later, smaller write
+// that still fits goes through. SQLite's "-shm" index is left out with
+// ENOSPC: each connection sizes it with 1-byte writes at open, and on a real
+// disk the space the previous COLMAP run's deleted "-wal" freed takes them,
+// so a later run opens the database and fails at its commit with "database
+// or disk is full" (issue 25's later blocks on a full tmpfs exited 0 the
+// same way) instead of failing to open it. With EIO the device
+// is broken for good: every later write fails, and so do fsync and
+// fdatasync of those files, as after the kernel lost a page it could not
+// write back.
 //
 // Only calls that go through the dynamic linker are seen: SQLite's pwrite64
 // (its unix VFS calls it through the PLT), libstdc++'s write and writev
@@ -112,7 +119,11 @@ static int Targets(int fd, char* path, size_t size) {
   const ssize_t length = readlink(link, path, size - 1);
   if (length <= 0) return 0;
   path[length] = '\0';
-  return strstr(path, g_path) != NULL;
+  if (strstr(path, g_path) == NULL) return 0;
+  const size_t path_length = strlen(path);
+  const int is_shm =
+      path_length > 4 && strcmp(path + path_length - 4, "-shm") == 0;
+  return g_errno == EIO || !is_shm;
 }
 
 // Appends one line with the real write, which never comes back here.
@@ -139,13 +150,14 @@ static void Record(const char* call, const char* path, size_t count) {
   close(fd);
 }
 
-// Once the budget is exceeded the count is kTripped: every later write fails.
+// After an EIO the count is kTripped: every later write fails.
 static const unsigned long long kTripped = ~0ULL;
 
 // Adds count to *written unless that exceeds the budget; 1 when it fails.
 static int Spend(unsigned long long* written, size_t count) {
-  if (*written == kTripped || count > g_budget - *written) {
-    *written = kTripped;
+  if (*written == kTripped) return 1;
+  if (count > g_budget - *written) {
+    if (g_errno == EIO) *written = kTripped;
     return 1;
   }
   *written += count;

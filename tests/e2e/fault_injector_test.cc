@@ -100,7 +100,7 @@ TEST_F(FaultInjector, OtherFilesAndProgramsAreLeftAlone) {
   EXPECT_FALSE(Log().empty());
 }
 
-TEST_F(FaultInjector, SharedCounterSpansProcessesAndStaysFull) {
+TEST_F(FaultInjector, SharedCounterSpansProcesses) {
   const std::string env = Environment("target.bin", 1500, "ENOSPC") +
                           " COLMAP_GCN_FAULT_COUNTER=" +
                           ShellQuote(JoinPaths(dir_.Path(), "fault.count"));
@@ -110,12 +110,36 @@ TEST_F(FaultInjector, SharedCounterSpansProcessesAndStaysFull) {
   EXPECT_FALSE(ExistsFile(log_));
   EXPECT_NE(Dd(env, 1, &output), 0) << output;
   EXPECT_EQ(TargetSize(), 0);
-  // A full disk stays full: a write that would have fit fails too.
+  EXPECT_FALSE(Log().empty());
+  // A full disk still takes what fits in its last 476 bytes.
+  EXPECT_EQ(RunShell("env " + env + " dd if=/dev/zero of=" +
+                         ShellQuote(target_) + " bs=476 count=1",
+                     &output),
+            0)
+      << output;
+  EXPECT_EQ(TargetSize(), 476);
+}
+
+TEST_F(FaultInjector, AfterAnIoErrorEveryWriteAndSyncFails) {
+  const std::string env = Environment("target.bin", 1000, "EIO") +
+                          " COLMAP_GCN_FAULT_COUNTER=" +
+                          ShellQuote(JoinPaths(dir_.Path(), "fault.count"));
+  std::string output;
+  EXPECT_NE(Dd(env, 4, &output), 0) << output;
+  EXPECT_EQ(TargetSize(), 512);
+  // A write that would fit in the budget fails all the same.
   EXPECT_NE(RunShell("env " + env + " dd if=/dev/zero of=" +
                          ShellQuote(target_) + " bs=1 count=1",
                      &output),
             0)
       << output;
+  // So does an fsync without any write.
+  EXPECT_NE(RunShell("env " + env + " dd if=/dev/null of=" +
+                         ShellQuote(target_) + " conv=fsync,notrunc",
+                     &output),
+            0)
+      << output;
+  EXPECT_NE(Log().find("fsync"), std::string::npos) << Log();
 }
 
 // SQLite's unix VFS writes with pwrite64 through its own table of system
