@@ -90,11 +90,17 @@ FeatureExtractionSummary ExtractFeatures(
       args.end(), options.colmap_args.begin(), options.colmap_args.end());
   FeatureExtractionSummary summary;
   const Timer timer;
+  const bool existed = ExistsFile(output_path);
   try {
     VerifyExtraction(output_path, colmap.Run("feature_extractor", args));
   } catch (const Error&) {
-    // A partial scratch database is not resumed: the next run starts over.
-    if (options.replace_database) RemoveDatabaseFiles(output_path);
+    // A scratch database is not resumed, and one this run created holds
+    // nothing to resume (COLMAP rolls a failed extraction back, or fails
+    // before its tables exist): the next run starts over. A database that
+    // existed keeps what COLMAP committed into it.
+    if (options.replace_database || !existed) {
+      RemoveDatabaseFiles(output_path);
+    }
     throw;
   }
   summary.seconds = timer.ElapsedSeconds();
