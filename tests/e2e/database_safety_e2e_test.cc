@@ -89,6 +89,9 @@ std::string IntegrityCheck(const std::string& path) {
 // a match row for every geometry, and nothing of ours left beside it.
 void ExpectCompleteDatabase(const std::string& path,
                             const std::set<int64_t>& expected_pairs) {
+  // First, before this test's own reads make them.
+  EXPECT_FALSE(fs::exists(path + "-wal"));
+  EXPECT_FALSE(fs::exists(path + "-shm"));
   EXPECT_EQ(IntegrityCheck(path), "ok");
   EXPECT_EQ(GeometryPairIds(path), expected_pairs);
   EXPECT_EQ(NumGeometries(path),
@@ -339,6 +342,26 @@ TEST_F(DatabaseSafety, SecondRunOnTheSameDatabaseIsRefused) {
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
       << ReadTextFile(Path("concurrent_first.log"));
   ExpectCompleteDatabase(database, *reference_pairs_);
+}
+
+// Every pairing leaves the database as COLMAP would: no empty "-wal" or
+// "-shm" of our reads beside it, also when nothing needed matching.
+TEST_F(DatabaseSafety, NoSqliteSideFilesAfterAnyPairing) {
+  for (const std::string pairing : {"gcn", "knn", "exhaustive"}) {
+    const std::string database = CopyOfBase("side_files_" + pairing + ".db");
+    for (int run = 0; run < 2; ++run) {
+      std::string output;
+      ASSERT_EQ(Colmap(MatcherArgs(database,
+                                   "--GcnMatching.pairing " + pairing +
+                                       " --GcnMatching.k 3"),
+                       &output),
+                0)
+          << output;
+      EXPECT_FALSE(fs::exists(database + "-wal")) << pairing << " " << run;
+      EXPECT_FALSE(fs::exists(database + "-shm")) << pairing << " " << run;
+      EXPECT_FALSE(fs::exists(database + ".gcn-partial")) << pairing;
+    }
+  }
 }
 
 TEST_F(DatabaseSafety, ReadOnlyDatabaseIsRefusedUpFront) {
