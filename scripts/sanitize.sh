@@ -10,15 +10,17 @@
 # five suites that run the real COLMAP through whole pipelines on generated
 # scenes (end-to-end, retrieval end-to-end, benchmark, synthetic-COLMAP,
 # default model); most of their time is COLMAP's own work, which is not
-# instrumented. SANITIZE_ALL=1 builds and runs them too.
+# instrumented. SANITIZE_ALL=1 builds and runs them too. Always left out: the
+# fault-injection suite, whose LD_PRELOAD library would come before ASan's
+# runtime in our instrumented front end, which ASan refuses.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 BUILD=build-asan
 # Not built, not run (tests/CMakeLists.txt, COLMAP_GCN_SKIP_SUITES).
-SKIP_SUITES="e2e_test;retrieval_e2e_test;evaluation_benchmark_test;synthetic_colmap_test;default_model_e2e_test"
+SKIP_SUITES="e2e_test;retrieval_e2e_test;evaluation_benchmark_test;synthetic_colmap_test;default_model_e2e_test;fault_injection_e2e_test"
 if [ "${SANITIZE_ALL:-0}" = 1 ]; then
-  SKIP_SUITES=""
+  SKIP_SUITES="fault_injection_e2e_test"
 fi
 FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # -O1 -g1 (line tables: file and line in every report's stack) as ASan's
