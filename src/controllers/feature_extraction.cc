@@ -81,8 +81,7 @@ FeatureExtractionSummary ExtractFeatures(
     args.push_back("--image_list_path");
     args.push_back(options.image_list_path);
   }
-  if (options.single_camera &&
-      !HasArgument(options.colmap_args, "ImageReader.single_camera")) {
+  if (options.single_camera) {
     args.push_back("--ImageReader.single_camera");
     args.push_back("1");
   }

@@ -16,8 +16,8 @@ struct FeatureExtractionOptions {
   // under image_path.
   std::string image_list_path = "";
 
-  // One camera for all images (--ImageReader.single_camera 1) unless
-  // colmap_args set --ImageReader.single_camera themselves.
+  // One camera for all images (--ImageReader.single_camera 1); commands
+  // bind the user's --ImageReader.single_camera here, never in colmap_args.
   bool single_camera = false;
 
   // Extract into "<database_path>.partial" and rename it over database_path

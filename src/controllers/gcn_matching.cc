@@ -102,6 +102,7 @@ class RunFiles {
 
 void GcnMatchingOptions::Matching::Check() const {
   CHECK_OPTION_GE(block_size, 1);
+  CHECK_OPTION_GE(min_num_inliers, 0);
 }
 
 GcnMatchingOptions::GcnMatchingOptions()
@@ -190,6 +191,7 @@ GcnMatchingReport ChooseAndMatchPairs(const std::string& database_path,
   matching_options.pairs_path = options.matching.pairs_path;
   matching_options.colmap_args = options.colmap_args;
   matching_options.block_size = options.matching.block_size;
+  matching_options.min_num_inliers = options.matching.min_num_inliers;
   LOG(INFO) << options.pairing << " pairing of " << report.num_images
             << " images"
             << (generator->UsesVerification()

@@ -43,10 +43,14 @@ struct GcnMatchingOptions {
     // Show all of COLMAP's output, not only progress.
     bool verbose = false;
 
+    // COLMAP's --SiftMatching.min_num_inliers, read once here: passed to
+    // its verification and used to count verified pairs (UM).
+    int min_num_inliers = kDefaultMinNumInliers;
+
     void Check() const;
   } matching;
 
-  // Passed to COLMAP's matches_importer unchanged: the user's
+  // Passed to COLMAP's matches_importer unchanged: the user's other
   // --SiftMatching.* arguments.
   std::vector<std::string> colmap_args;
 

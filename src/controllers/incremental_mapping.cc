@@ -66,14 +66,10 @@ IncrementalMappingSummary RunIncrementalMapping(
                                    options.image_path,
                                    "--output_path",
                                    scratch_path};
-  if (!HasArgument(options.colmap_args, "Mapper.num_threads")) {
-    args.push_back("--Mapper.num_threads");
-    args.push_back(std::to_string(options.num_threads));
-  }
-  if (!HasArgument(options.colmap_args, "Mapper.min_model_size")) {
-    args.push_back("--Mapper.min_model_size");
-    args.push_back(std::to_string(options.min_model_size));
-  }
+  args.push_back("--Mapper.num_threads");
+  args.push_back(std::to_string(options.num_threads));
+  args.push_back("--Mapper.min_model_size");
+  args.push_back(std::to_string(options.min_model_size));
   args.insert(
       args.end(), options.colmap_args.begin(), options.colmap_args.end());
   IncrementalMappingSummary summary;

@@ -13,12 +13,12 @@ struct IncrementalMappingOptions {
   // The images the database was extracted from.
   std::string image_path = "";
 
-  // --Mapper.num_threads unless colmap_args set it; -1: all cores. One
-  // thread makes mapper runs repeatable.
+  // --Mapper.num_threads; -1: all cores. One thread makes mapper runs
+  // repeatable.
   int num_threads = -1;
 
-  // --Mapper.min_model_size unless colmap_args set it: models with fewer
-  // registered images are discarded.
+  // --Mapper.min_model_size: models with fewer registered images are
+  // discarded.
   int min_model_size = 10;
 
   // Remove the output folder's models first (a rerun replaces them). Off:
@@ -26,7 +26,8 @@ struct IncrementalMappingOptions {
   // would number the new models after them.
   bool replace_models = false;
 
-  // --Mapper.* arguments, passed after ours.
+  // The other --Mapper.* arguments, passed after ours (never the two above,
+  // which the command binds to these fields).
   std::vector<std::string> colmap_args;
 
   // Throws OptionError naming the first invalid field.

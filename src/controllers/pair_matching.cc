@@ -114,7 +114,9 @@ GeometryMap RunMatchesImporter(const ColmapRunner& colmap,
                                      "--match_list_path",
                                      todo_path,
                                      "--match_type",
-                                     "pairs"};
+                                     "pairs",
+                                     "--SiftMatching.min_num_inliers",
+                                     std::to_string(options.min_num_inliers)};
     args.insert(
         args.end(), options.colmap_args.begin(), options.colmap_args.end());
     try {
@@ -223,12 +225,6 @@ void PairMatchingOptions::Check() const {
   CHECK_OPTION_GE(block_size, 1);
 }
 
-int EffectiveMinNumInliers(const PairMatchingOptions& options) {
-  return IntArgument(options.colmap_args,
-                     "SiftMatching.min_num_inliers",
-                     options.min_num_inliers);
-}
-
 PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
                                     const std::string& database_path,
                                     const std::vector<ImagePair>& pairs,
@@ -248,7 +244,7 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
-  const int min_num_inliers = EffectiveMinNumInliers(options);
+  const int min_num_inliers = options.min_num_inliers;
 
   std::vector<DatabaseImage> images;
   std::unordered_set<image_pair_t> pair_ids;
@@ -330,7 +326,7 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
-  const int min_num_inliers = EffectiveMinNumInliers(options);
+  const int min_num_inliers = options.min_num_inliers;
   std::vector<DatabaseImage> images;
   {
     const Database database(database_path);

@@ -15,9 +15,8 @@ struct PairMatchingOptions {
   // database as "<database_path>.pairs.txt".
   std::string pairs_path = "";
 
-  // Minimum inliers for a verified pair to count as useful (UM). Taken from
-  // --SiftMatching.min_num_inliers when that is among colmap_args (see
-  // EffectiveMinNumInliers).
+  // COLMAP's --SiftMatching.min_num_inliers: passed to its verification,
+  // and the inliers a verified pair needs to count as useful (UM).
   int min_num_inliers = kDefaultMinNumInliers;
 
   // Optional scores parallel to the pairs (e.g. the GCN's), written as the
@@ -29,17 +28,12 @@ struct PairMatchingOptions {
   // own database writes in blocks of 1225 pairs.
   int block_size = 1225;
 
-  // Forwarded verbatim to `colmap matches_importer` (the user's
-  // --SiftMatching.* options).
+  // Forwarded verbatim to `colmap matches_importer` (the user's other
+  // --SiftMatching.* options; never --SiftMatching.min_num_inliers).
   std::vector<std::string> colmap_args;
 
   void Check() const;
 };
-
-// The inlier count a verified pair needs (IsVerifiedTwoViewGeometry):
-// --SiftMatching.min_num_inliers from colmap_args, as COLMAP uses it, else
-// options.min_num_inliers.
-int EffectiveMinNumInliers(const PairMatchingOptions& options);
 
 // What matching a pair set cost and bought, in the paper's terms.
 struct PairMatchingSummary {

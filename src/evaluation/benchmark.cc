@@ -184,7 +184,9 @@ void BenchmarkRunner::Extract(SceneContext* scene, SceneResult* result) {
   FeatureExtractionOptions extraction_options;
   extraction_options.image_path = scene->dataset.image_path;
   extraction_options.image_list_path = scene->dataset.image_list_path;
-  extraction_options.single_camera = scene->dataset.single_camera;
+  extraction_options.single_camera = options_.single_camera < 0
+                                         ? scene->dataset.single_camera
+                                         : options_.single_camera != 0;
   extraction_options.replace_database = true;
   // A scene with too few images shows as such in every method's row.
   extraction_options.min_num_images = 0;
@@ -259,7 +261,7 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
                                       scene->base_db,
                                       scene->gt,
                                       options_.label_pair_filter,
-                                      options_.matching_args,
+                                      options_.MatchingOptions(),
                                       JoinPaths(labels_dir, "matching"));
           Progress(name,
                    "matched " + std::to_string(summary.num_pairs_matched) +
@@ -425,9 +427,8 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
 
   const std::string db = JoinPaths(dir, "database.db");
   CopyBaseDatabase(scene.base_db, db);
-  PairMatchingOptions matching_options;
+  PairMatchingOptions matching_options = options_.MatchingOptions();
   matching_options.pairs_path = JoinPaths(dir, "pairs.txt");
-  matching_options.colmap_args = options_.matching_args;
   Progress(name,
            method.spec + ": matching " +
                (in_the_loop ? std::string("in rounds")
@@ -530,9 +531,7 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
   std::vector<ImageNamePair> verified;
   {
     const Database database(JoinPaths(dir, "database.db"));
-    PairMatchingOptions matching_options;
-    matching_options.colmap_args = options_.matching_args;
-    const int min_num_inliers = EffectiveMinNumInliers(matching_options);
+    const int min_num_inliers = options_.gcn_matching.matching.min_num_inliers;
     for (const TwoViewGeometryInfo& info :
          database.ReadTwoViewGeometryInfos()) {
       if (!IsVerifiedTwoViewGeometry(
@@ -772,6 +771,13 @@ BenchmarkResults BenchmarkRunner::Run() {
 
 }  // namespace
 
+PairMatchingOptions BenchmarkOptions::MatchingOptions() const {
+  PairMatchingOptions matching;
+  matching.colmap_args = matching_args;
+  matching.min_num_inliers = gcn_matching.matching.min_num_inliers;
+  return matching;
+}
+
 void BenchmarkOptions::Check() const {
   CHECK_OPTION(datasets, !datasets.empty(), "name at least one dataset");
   CHECK_OPTION(methods, !methods.empty(), "name methods (or none)");
@@ -779,6 +785,7 @@ void BenchmarkOptions::Check() const {
   labels.Check();
   pose.Check();
   label_pair_filter.Check();
+  CHECK_OPTION_GE(single_camera, -1);
   CHECK_OPTION_NUM_THREADS(mapper_num_threads);
   CHECK_OPTION_GE(mapper_min_model_size, 0);
   CHECK_OPTION(alone_results_path,

@@ -32,6 +32,10 @@ struct BenchmarkOptions {
   // practice CT = 0: negative).
   PosePairFilterOptions label_pair_filter;
 
+  // One camera for all of a scene's images: 1 yes, 0 no, -1 as its dataset
+  // says (--ImageReader.single_camera).
+  int single_camera = -1;
+
   // Mapper threads; 1 makes mapper runs repeatable (COLMAP's own advice).
   int mapper_num_threads = 1;
 
@@ -69,6 +73,10 @@ struct BenchmarkOptions {
 
   // Recorded in the report.
   std::string command = "";
+
+  // How every method's pairs (and the labels' pose-filtered pairs) are
+  // matched: matching_args and gcn_matching's min_num_inliers.
+  PairMatchingOptions MatchingOptions() const;
 
   // Throws OptionError naming the first invalid field.
   void Check() const;

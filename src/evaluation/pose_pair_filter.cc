@@ -111,7 +111,7 @@ LabelMatchingSummary MatchPosePairsForLabels(
     const std::string& base_db,
     const Reconstruction& ground_truth,
     const PosePairFilterOptions& options,
-    const std::vector<std::string>& matching_args,
+    const PairMatchingOptions& matching,
     const std::string& work_dir) {
   CreateDirIfNotExists(work_dir);
   LabelMatchingSummary summary;
@@ -149,9 +149,8 @@ LabelMatchingSummary MatchPosePairsForLabels(
   }
   summary.num_pairs_matched = pairs.size();
 
-  PairMatchingOptions matching_options;
+  PairMatchingOptions matching_options = matching;
   matching_options.pairs_path = JoinPaths(work_dir, "pairs.txt");
-  matching_options.colmap_args = matching_args;
   const PairMatchingSummary matched =
       MatchImagePairs(colmap, summary.database_path, pairs, matching_options);
   summary.num_pairs_verified = matched.num_verified_pairs;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "controllers/pair_matching.h"
 #include "feature/pairs_io.h"
 #include "scene/reconstruction.h"
 
@@ -84,7 +85,7 @@ LabelMatchingSummary MatchPosePairsForLabels(
     const std::string& base_db,
     const Reconstruction& ground_truth,
     const PosePairFilterOptions& options,
-    const std::vector<std::string>& matching_args,
+    const PairMatchingOptions& matching,
     const std::string& work_dir);
 
 }  // namespace colmap_gcn

@@ -92,6 +92,18 @@ int RunGcnBenchmark(int argc, char** argv) {
   manager.AddDefaultOption("Benchmark.keep_going",
                            &options.keep_going,
                            "exit 0 even when scenes or methods failed");
+  // COLMAP's names for options the benchmark sets itself: read here, passed
+  // once.
+  manager.AddAliasOption("Mapper.num_threads",
+                         &options.mapper_num_threads,
+                         "= --Benchmark.mapper_num_threads");
+  manager.AddAliasOption("Mapper.min_model_size",
+                         &options.mapper_min_model_size,
+                         "= --Benchmark.mapper_min_model_size");
+  manager.AddDefaultOption("ImageReader.single_camera",
+                           &options.single_camera,
+                           "1: one camera per scene, 0: one per image; -1: "
+                           "as the dataset says");
   manager.AddPassThroughPrefix("ImageReader.");
   manager.AddPassThroughPrefix("SiftExtraction.");
   manager.AddPassThroughPrefix("SiftMatching.");
@@ -107,7 +119,6 @@ int RunGcnBenchmark(int argc, char** argv) {
   options.mapper_args = ArgumentsWithPrefix(args, {"Mapper."});
   CheckNoMethodFlags(manager, &options.gcn_matching);
   manager.Check([&] { options.Check(); });
-  CheckSiftMatchingArguments(options.matching_args);
   std::vector<std::string> command = {"colmap"};
   for (int i = 0; i < argc; ++i) command.push_back(ShellQuote(argv[i]));
   options.command = StringJoin(command, " ");

@@ -26,16 +26,10 @@ void AddGcnMatchingOptions(OptionManager* manager,
                             "log of COLMAP's full output");
   manager->AddDefaultOption(
       "GcnMatching.verbose", &matching.verbose, "show all of COLMAP's output");
-}
-
-void CheckSiftMatchingArguments(const std::vector<std::string>& args) {
-  const int min_num_inliers =
-      IntArgument(args, "SiftMatching.min_num_inliers", 0);
-  if (min_num_inliers < 0) {
-    ThrowError("--SiftMatching.min_num_inliers must be >= 0 (got ",
-               min_num_inliers,
-               ")");
-  }
+  manager->AddDefaultOption("SiftMatching.min_num_inliers",
+                            &matching.min_num_inliers,
+                            "COLMAP's verification threshold; also what a "
+                            "verified pair (UM) needs");
 }
 
 int RunGcnMatcher(int argc, char** argv) {
@@ -53,7 +47,6 @@ int RunGcnMatcher(int argc, char** argv) {
   }
   options.colmap_args = manager.PassThroughArguments();
   manager.Check([&] { options.Check(); });
-  CheckSiftMatchingArguments(options.colmap_args);
   PrintGcnMatchingReport(RunGcnMatching(database_path, options));
   return 0;
 }

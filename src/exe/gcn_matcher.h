@@ -12,10 +12,6 @@ namespace colmap_gcn {
 // registered generator's (PairGenerators()) and the matching ones.
 void AddGcnMatchingOptions(OptionManager* manager, GcnMatchingOptions* options);
 
-// Throws Error naming the option when a --SiftMatching.* value we read
-// ourselves (min_num_inliers: an integer >= 0) is invalid.
-void CheckSiftMatchingArguments(const std::vector<std::string>& args);
-
 // `colmap gcn_matcher`: selects image pairs and matches them with COLMAP.
 int RunGcnMatcher(int argc, char** argv);
 

@@ -21,6 +21,8 @@ int RunGcnReconstructor(int argc, char** argv) {
   std::string image_path;
   std::string workspace_path;
   GcnMatchingOptions matching_options;
+  FeatureExtractionOptions extraction_options;
+  IncrementalMappingOptions mapping_options;
   OptionManager manager(
       "gcn_reconstructor",
       "Extracts features, matches the pairs gcn_matcher selects and maps: "
@@ -28,6 +30,16 @@ int RunGcnReconstructor(int argc, char** argv) {
   manager.AddRequiredOption("image_path", &image_path);
   manager.AddRequiredOption("workspace_path", &workspace_path);
   AddGcnMatchingOptions(&manager, &matching_options);
+  // COLMAP's options that we set ourselves: read here, passed once.
+  manager.AddDefaultOption("ImageReader.single_camera",
+                           &extraction_options.single_camera,
+                           "one camera for all images");
+  manager.AddDefaultOption("Mapper.num_threads",
+                           &mapping_options.num_threads,
+                           "mapper threads; -1: all cores");
+  manager.AddDefaultOption("Mapper.min_model_size",
+                           &mapping_options.min_model_size,
+                           "smaller models are discarded by the mapper");
   manager.AddPassThroughPrefix("SiftMatching.");
   manager.AddPassThroughPrefix("ImageReader.");
   manager.AddPassThroughPrefix("SiftExtraction.");
@@ -35,8 +47,11 @@ int RunGcnReconstructor(int argc, char** argv) {
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
-  manager.Check([&] { matching_options.Check(); });
-  CheckSiftMatchingArguments(manager.PassThroughArguments());
+  manager.Check([&] {
+    matching_options.Check();
+    CHECK_OPTION_NUM_THREADS(mapping_options.num_threads);
+    CHECK_OPTION_GE(mapping_options.min_model_size, 0);
+  });
   CheckImageFolder(image_path);
   CheckOutputFolder(matching_options.matching.colmap_log_path);
   CheckOutputFolder(matching_options.matching.pairs_path);
@@ -54,7 +69,6 @@ int RunGcnReconstructor(int argc, char** argv) {
   }
 
   LOG(INFO) << "[1/3] feature_extractor";
-  FeatureExtractionOptions extraction_options;
   extraction_options.image_path = image_path;
   extraction_options.colmap_args =
       ArgumentsWithPrefix(args, {"ImageReader.", "SiftExtraction."});
@@ -71,7 +85,6 @@ int RunGcnReconstructor(int argc, char** argv) {
     ThrowError(sparse_path,
                " already holds models; use a new --workspace_path");
   }
-  IncrementalMappingOptions mapping_options;
   mapping_options.image_path = image_path;
   mapping_options.colmap_args = ArgumentsWithPrefix(args, {"Mapper."});
   const IncrementalMappingSummary mapping = RunIncrementalMapping(

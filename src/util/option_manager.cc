@@ -43,9 +43,14 @@ bool OptionManager::Parse(int argc, char** argv) {
   pass_through_.clear();
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    // A COLMAP option a command binds itself (typed, checked once here) is
+    // ours although its prefix is passed through.
+    const bool bound = StringStartsWith(arg, "--") &&
+                       desc_->find_nothrow(arg.substr(2, arg.find('=') - 2),
+                                           /*approx=*/false) != nullptr;
     bool passed = false;
     for (const auto& prefix : pass_through_prefixes_) {
-      if (StringStartsWith(arg, "--" + prefix)) {
+      if (!bound && StringStartsWith(arg, "--" + prefix)) {
         pass_through_.push_back(arg);
         if (arg.find('=') == std::string::npos && i + 1 < argc) {
           pass_through_.push_back(argv[++i]);
@@ -110,42 +115,6 @@ std::string OptionManager::FlagName(const void* field) const {
     if (address == field) return flag;
   }
   return "";
-}
-
-int IntArgument(const std::vector<std::string>& args,
-                const std::string& name,
-                int default_value) {
-  const std::string option = "--" + name;
-  for (size_t i = 0; i < args.size(); ++i) {
-    std::string value;
-    if (args[i] == option) {
-      if (i + 1 >= args.size()) ThrowError(option, " has no value");
-      value = args[i + 1];
-    } else if (StringStartsWith(args[i], option + "=")) {
-      value = args[i].substr(option.size() + 1);
-    } else {
-      continue;
-    }
-    const std::string trimmed = StringTrim(value);
-    char* end = nullptr;
-    errno = 0;
-    const long parsed = std::strtol(trimmed.c_str(), &end, 10);
-    if (trimmed.empty() || *end != '\0' || errno == ERANGE ||
-        parsed < INT_MIN || parsed > INT_MAX) {
-      ThrowError(option, " must be an integer (got \"", value, "\")");
-    }
-    return static_cast<int>(parsed);
-  }
-  return default_value;
-}
-
-bool HasArgument(const std::vector<std::string>& args,
-                 const std::string& name) {
-  const std::string option = "--" + name;
-  for (const std::string& arg : args) {
-    if (arg == option || StringStartsWith(arg, option + "=")) return true;
-  }
-  return false;
 }
 
 std::vector<std::string> ArgumentsWithPrefix(

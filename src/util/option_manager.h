@@ -33,6 +33,14 @@ class OptionManager {
                         T* option,
                         const std::string& help = "");
 
+  // A second flag for a field bound with AddDefaultOption (COLMAP's name for
+  // an option of ours, e.g. --Mapper.num_threads): sets the field only when
+  // given, after the other flags.
+  template <typename T>
+  void AddAliasOption(const std::string& name,
+                      T* option,
+                      const std::string& help = "");
+
   // An enum option typed as one of `names`; a value outside them fails
   // Parse with "--<name> must be one of a|b (got "x")".
   template <typename Enum>
@@ -42,7 +50,9 @@ class OptionManager {
                      const std::string& help = "");
 
   // Options starting with one of these prefixes (e.g. "SiftMatching.") are
-  // not ours: they are collected verbatim for passing on to COLMAP.
+  // not ours: they are collected verbatim for passing on to COLMAP, except
+  // those bound with Add*Option, which the command reads itself (and passes
+  // on to COLMAP from its typed field).
   void AddPassThroughPrefix(const std::string& prefix);
   const std::vector<std::string>& PassThroughArguments() const {
     return pass_through_;
@@ -92,18 +102,6 @@ std::vector<std::string> ArgumentsWithPrefix(
     const std::vector<std::string>& args,
     const std::vector<std::string>& prefixes);
 
-// The integer value of pass-through option `name` (e.g.
-// "SiftMatching.min_num_inliers", given as "--name value" or "--name=value")
-// in args, or default_value when absent; throws Error naming the option and
-// the value when it is not an integer.
-int IntArgument(const std::vector<std::string>& args,
-                const std::string& name,
-                int default_value);
-
-// Whether pass-through option `name` (e.g. "Mapper.num_threads") is in args,
-// as "--name value" or "--name=value".
-bool HasArgument(const std::vector<std::string>& args, const std::string& name);
-
 template <typename T>
 void OptionManager::AddRequiredOption(const std::string& name,
                                       T* option,
@@ -133,6 +131,18 @@ void OptionManager::AddDefaultOption(const std::string& name,
       name.c_str(),
       boost::program_options::value<T>(option)->default_value(*option),
       help.c_str());
+}
+
+template <typename T>
+void OptionManager::AddAliasOption(const std::string& name,
+                                   T* option,
+                                   const std::string& help) {
+  desc_->add_options()(
+      name.c_str(), boost::program_options::value<T>(), help.c_str());
+  after_parse_.push_back(
+      [name, option](const boost::program_options::variables_map& vmap) {
+        if (vmap.count(name) > 0) *option = vmap[name].as<T>();
+      });
 }
 
 template <typename Enum>

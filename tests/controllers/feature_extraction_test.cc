@@ -83,7 +83,7 @@ TEST(FeatureExtraction, FewerImagesThanReportedAreAnError) {
       "colmap feature_extractor reported 3 images extracted but");
 }
 
-TEST(FeatureExtraction, ImageListAndSingleCameraUnlessTheUserSetsIt) {
+TEST(FeatureExtraction, ImageListAndSingleCamera) {
   TemporaryDirectory dir;
   const FakeColmap fake(dir.Path());
   const std::string database_path = JoinPaths(dir.Path(), "database.db");
@@ -105,21 +105,18 @@ TEST(FeatureExtraction, ImageListAndSingleCameraUnlessTheUserSetsIt) {
                        "--SiftExtraction.use_gpu",
                        "0"}));
 
-  // The user's own value, in either spelling, is the only one passed.
+  // Off: COLMAP's own default (one camera per image) applies.
   options.image_list_path = "";
-  for (const Arguments& user : {Arguments{"--ImageReader.single_camera", "0"},
-                                Arguments{"--ImageReader.single_camera=0"}}) {
-    options.colmap_args = user;
-    ExtractFeatures(fake.Runner(), database_path, options);
-    Arguments expected = {"feature_extractor",
-                          "--database_path",
-                          database_path,
-                          "--image_path",
-                          "/images"};
-    expected.insert(expected.end(), user.begin(), user.end());
-    expected.insert(expected.end(), {"--SiftExtraction.use_gpu", "0"});
-    EXPECT_EQ(fake.LastArguments(), expected);
-  }
+  options.single_camera = false;
+  ExtractFeatures(fake.Runner(), database_path, options);
+  EXPECT_EQ(fake.LastArguments(),
+            (Arguments{"feature_extractor",
+                       "--database_path",
+                       database_path,
+                       "--image_path",
+                       "/images",
+                       "--SiftExtraction.use_gpu",
+                       "0"}));
 }
 
 TEST(FeatureExtraction, ReplaceDatabaseRenamesOnlyACompleteExtraction) {

@@ -39,12 +39,12 @@ TEST(IncrementalMapping, PassesColmapsDefaultsUnlessTheUserSetsThem) {
   // The models were moved out of the mapper's scratch folder.
   EXPECT_FALSE(ExistsDir(output_path + ".partial"));
 
-  // Ours, then the user's; a flag the user sets is not passed twice.
-  options.num_threads = 1;
+  // Ours (the command binds the user's --Mapper.num_threads and
+  // --Mapper.min_model_size to them), then the user's others.
+  options.num_threads = 2;
   options.min_model_size = 3;
   options.replace_models = true;
-  options.colmap_args = {
-      "--Mapper.num_threads=2", "--Mapper.ba_refine_focal_length", "0"};
+  options.colmap_args = {"--Mapper.ba_refine_focal_length", "0"};
   RunIncrementalMapping(fake.Runner(), "/db", output_path, options);
   EXPECT_EQ(fake.LastArguments(),
             (Arguments{"mapper",
@@ -54,9 +54,10 @@ TEST(IncrementalMapping, PassesColmapsDefaultsUnlessTheUserSetsThem) {
                        "/images",
                        "--output_path",
                        output_path + ".partial",
+                       "--Mapper.num_threads",
+                       "2",
                        "--Mapper.min_model_size",
                        "3",
-                       "--Mapper.num_threads=2",
                        "--Mapper.ba_refine_focal_length",
                        "0"}));
 }

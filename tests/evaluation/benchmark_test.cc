@@ -339,7 +339,8 @@ TEST_F(GcnBenchmarkEndToEnd, PoseFilteredLabelMatchingMatchesOnlyKeptPairs) {
   ASSERT_GT(selection.num_skipped, 0u);
   ASSERT_GT(selection.kept.size(), 0u);
   const std::string work_dir = JoinPaths(dir_->Path(), "label_matching");
-  const std::vector<std::string> args = {"--SiftMatching.num_threads", "2"};
+  PairMatchingOptions args;
+  args.colmap_args = {"--SiftMatching.num_threads", "2"};
   const LabelMatchingSummary first = MatchPosePairsForLabels(
       colmap, JoinPaths(SceneDir(), "base.db"), gt, options, args, work_dir);
   EXPECT_EQ(first.num_images, 10u);

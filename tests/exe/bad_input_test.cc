@@ -210,8 +210,7 @@ TEST_F(BadInput, MatcherMinNumInliersText) {
   ExpectMatcherError(
       "--GcnMatching.pairing exhaustive "
       "--SiftMatching.min_num_inliers abc",
-      {"--SiftMatching.min_num_inliers must be an integer "
-       "(got \"abc\")"});
+      {"--SiftMatching.min_num_inliers", "abc"});
 }
 
 TEST_F(BadInput, MatcherMinNumInliersNegative) {
@@ -549,7 +548,7 @@ TEST_F(BadInput, BenchmarkKSetByMethods) {
 TEST_F(BadInput, BenchmarkMinNumInliersText) {
   ExpectBenchmarkError(
       "--datasets synth:ordinary:10 --SiftMatching.min_num_inliers abc",
-      {"--SiftMatching.min_num_inliers must be an integer (got \"abc\")"});
+      {"--SiftMatching.min_num_inliers", "abc"});
 }
 
 // A scene that passes the checks but fails while running (its two "images"

@@ -135,34 +135,5 @@ TEST(OptionManagerCheck, NamesTheFlagBoundToTheFailingField) {
   EXPECT_NO_THROW(manager.Check([&] { options.Check(); }));
 }
 
-TEST(IntArgument, ReadsBothSpellingsAndNamesBadValues) {
-  const std::string kName = "SiftMatching.min_num_inliers";
-  EXPECT_EQ(IntArgument({}, kName, 15), 15);
-  EXPECT_EQ(IntArgument({"--SiftMatching.num_threads", "2"}, kName, 15), 15);
-  EXPECT_EQ(IntArgument({"--SiftMatching.min_num_inliers", "30"}, kName, 15),
-            30);
-  EXPECT_EQ(IntArgument({"--SiftMatching.min_num_inliers=-2"}, kName, 15), -2);
-  for (const std::vector<std::string>& args :
-       std::vector<std::vector<std::string>>{
-           {"--SiftMatching.min_num_inliers", "abc"},
-           {"--SiftMatching.min_num_inliers", "15abc"},
-           {"--SiftMatching.min_num_inliers", "1.5"},
-           {"--SiftMatching.min_num_inliers", ""},
-           {"--SiftMatching.min_num_inliers=99999999999"}}) {
-    try {
-      IntArgument(args, kName, 15);
-      FAIL() << args.back();
-    } catch (const Error& error) {
-      const std::string message = error.what();
-      EXPECT_EQ(message.find("--SiftMatching.min_num_inliers must be an "
-                             "integer (got \""),
-                0u)
-          << message;
-    }
-  }
-  EXPECT_THROW(IntArgument({"--SiftMatching.min_num_inliers"}, kName, 15),
-               Error);
-}
-
 }  // namespace
 }  // namespace colmap_gcn

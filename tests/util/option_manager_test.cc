@@ -47,6 +47,41 @@ TEST(OptionManager, ParsesRequiredDefaultAndPassThrough) {
           "--SiftMatching.max_ratio", "0.7", "--SiftMatching.use_gpu=0"}));
 }
 
+// A COLMAP option the command reads itself is parsed, typed and checked
+// once, and not passed through (so never passed to COLMAP twice).
+TEST(OptionManager, BoundOptionUnderAPassThroughPrefixIsOurs) {
+  int min_num_inliers = 15;
+  int num_threads = 1;
+  OptionManager manager("test", "summary");
+  manager.AddDefaultOption("SiftMatching.min_num_inliers", &min_num_inliers);
+  manager.AddDefaultOption("Benchmark.mapper_num_threads", &num_threads);
+  manager.AddAliasOption("Mapper.num_threads", &num_threads);
+  manager.AddPassThroughPrefix("SiftMatching.");
+  manager.AddPassThroughPrefix("Mapper.");
+  Argv args({"test",
+             "--SiftMatching.max_ratio",
+             "0.7",
+             "--SiftMatching.min_num_inliers",
+             "30",
+             "--Mapper.num_threads=4",
+             "--Mapper.ba_refine_focal_length",
+             "0"});
+  ASSERT_TRUE(manager.Parse(args.argc(), args.argv()));
+  EXPECT_EQ(min_num_inliers, 30);
+  EXPECT_EQ(num_threads, 4);
+  EXPECT_EQ(manager.PassThroughArguments(),
+            (std::vector<std::string>{"--SiftMatching.max_ratio",
+                                      "0.7",
+                                      "--Mapper.ba_refine_focal_length",
+                                      "0"}));
+  // Not given: the alias leaves the field to the other flag.
+  Argv other({"test", "--Benchmark.mapper_num_threads", "2"});
+  ASSERT_TRUE(manager.Parse(other.argc(), other.argv()));
+  EXPECT_EQ(num_threads, 2);
+  Argv text({"test", "--SiftMatching.min_num_inliers", "abc"});
+  EXPECT_THROW(manager.Parse(text.argc(), text.argv()), Error);
+}
+
 TEST(OptionManager, HelpReturnsFalse) {
   std::string database_path;
   OptionManager manager("test", "summary");
