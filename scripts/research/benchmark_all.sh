@@ -3,7 +3,7 @@
 # scene with ground truth and on the three synthetic families, in one run
 # (methods interleaved per scene, so matching times are comparable).
 #
-#   scripts/benchmark_all.sh [OUTPUT_DIR] [extra gcn_benchmark options...]
+#   scripts/research/benchmark_all.sh [OUTPUT_DIR] [extra gcn_benchmark options...]
 #
 # OUTPUT_DIR defaults to benchmark-out/ (cached: rerunning resumes; use a
 # fresh folder to re-measure times). COLMAP_GCN_BUILD selects the build
@@ -12,11 +12,11 @@
 # such. Run scripts/build.sh first.
 #
 # The ambiguous real scenes (books, cereal, oats, street) have no ground
-# truth of their own: scripts/ambiguous_references.sh builds stand-in GT
+# truth of their own: scripts/research/ambiguous_references.sh builds stand-in GT
 # cameras for them into AMBIGUOUS (default ambiguous-scenes/), and they are
 # benchmarked when that has been run.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 OUT="${1:-benchmark-out}"
 shift || true
 BUILD="${COLMAP_GCN_BUILD:-build}"
@@ -36,7 +36,7 @@ for scene in books cereal oats street; do
     DATASETS="$DATASETS${DATASETS:+,}$AMBIGUOUS/$scene"
   else
     echo "benchmark_all: $AMBIGUOUS/$scene/gt not found (run" \
-      "scripts/ambiguous_references.sh), skipped" >&2
+      "scripts/research/ambiguous_references.sh), skipped" >&2
   fi
 done
 DATASETS="$DATASETS${DATASETS:+,}synth:ordinary:24:1,synth:repetitive:24:1,synth:symmetric:24:1"
