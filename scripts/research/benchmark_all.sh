@@ -16,11 +16,9 @@
 # cameras for them into AMBIGUOUS (default ambiguous-scenes/), and they are
 # benchmarked when that has been run.
 set -euo pipefail
-cd "$(dirname "$0")/../.."
+source "$(dirname "$0")/common.sh"
 OUT="${1:-benchmark-out}"
 shift || true
-BUILD="${COLMAP_GCN_BUILD:-build}"
-SHARED="${SHARED:-../shared/datasets}"
 
 DATASETS=""
 for scene in fountain-P11 entry-P10 temple-sparse-ring dino-sparse-ring; do
@@ -45,7 +43,7 @@ METHODS="exhaustive,knn:5,knn:10,knn:25,knn:50,knn:100"
 METHODS="$METHODS,vocab_tree:5,vocab_tree:10,vocab_tree:25,vocab_tree:50,vocab_tree:100"
 METHODS="$METHODS,gcn,oracle"
 
-exec "$BUILD/bin/colmap" gcn_benchmark \
+exec "$COLMAP" gcn_benchmark \
   --datasets "$DATASETS" \
   --methods "$METHODS" \
   --output_path "$OUT" \

@@ -4,7 +4,7 @@
 # text above the "generated below" marker is kept, everything below is
 # replaced by <OUT>/report.md, with figure links pointing into <OUT>.
 set -euo pipefail
-cd "$(dirname "$0")/../.."
+source "$(dirname "$0")/common.sh"
 OUT="${1:-benchmark-out}"
 DOC=docs/benchmarks.md
 MARKER='<!-- generated below by scripts/research/benchmark_docs.sh -->'

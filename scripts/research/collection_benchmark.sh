@@ -25,20 +25,19 @@ if [ "$#" -lt 4 ]; then
   echo "usage: $0 OUT METHODS SCENE_DIR SCENE_DIR... [-- OPTION...]" >&2
   exit 2
 fi
-REPO="$(cd "$(dirname "$0")/../.." && pwd)"
-OUT="$(realpath -m "$1")"
+source "$(dirname "$0")/common.sh"
+# Back to the caller's directory: OPTIONs keep their relative paths.
+cd "$CALLER_PWD"
+OUT="$(from_caller "$1")"
 METHODS="$2"
 shift 2
 SCENES=()
 while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do
-  SCENES+=("$(realpath -m "$1")")
+  SCENES+=("$(from_caller "$1")")
   shift
 done
 [ "$#" -gt 0 ] && shift
 OPTIONS=("$@")
-BUILD="${COLMAP_GCN_BUILD:-build}"
-case "$BUILD" in /*) ;; *) BUILD="$REPO/$BUILD" ;; esac
-COLMAP="$BUILD/bin/colmap"
 if [ ! -x "$COLMAP" ]; then
   echo "collection_benchmark: no $COLMAP (build first, or set COLMAP_GCN_BUILD)" >&2
   exit 1

@@ -22,15 +22,10 @@
 # EXTRA_TRAIN (comma list of further scenes in CORPUS every fold trains on,
 # e.g. synthetic ones; never evaluated here).
 set -euo pipefail
-REPO="$(cd "$(dirname "$0")/../.." && pwd)"
-CORPUS="$(realpath -m "${1:-$REPO/../corpus}")"
-OUT="$(realpath -m "${2:-$CORPUS/leave-scene-out}")"
+source "$(dirname "$0")/common.sh"
+CORPUS="$(from_caller "${1:-$REPO/../corpus}")"
+OUT="$(from_caller "${2:-$CORPUS/leave-scene-out}")"
 shift $(($# < 2 ? $# : 2))
-cd "$REPO"
-BUILD="${COLMAP_GCN_BUILD:-build}"
-COLMAP="$BUILD/bin/colmap"
-SEED="${SEED:-0}"
-THREADS="${THREADS:-2}"
 EVAL_FLAGS=()
 if [ -n "${ONNX_PATH:-}" ]; then EVAL_FLAGS=(--onnx_path "$ONNX_PATH"); fi
 

@@ -19,15 +19,10 @@
 # seen all but fold 4 and is not evaluated on them.
 # Environment: COLMAP_GCN_BUILD (default build), SEED (0), THREADS (2).
 set -euo pipefail
-REPO="$(cd "$(dirname "$0")/../.." && pwd)"
-CORPUS="$(realpath -m "${1:-$REPO/../corpus}")"
-MODEL="$(realpath -m "${2:-$CORPUS/default.gcnmodel}")"
+source "$(dirname "$0")/common.sh"
+CORPUS="$(from_caller "${1:-$REPO/../corpus}")"
+MODEL="$(from_caller "${2:-$CORPUS/default.gcnmodel}")"
 shift $(($# < 2 ? $# : 2))
-cd "$REPO"
-BUILD="${COLMAP_GCN_BUILD:-build}"
-COLMAP="$BUILD/bin/colmap"
-SEED="${SEED:-0}"
-THREADS="${THREADS:-2}"
 
 if [ ! -d "$CORPUS" ]; then
   echo "train_default_model: $CORPUS not found (build it with scripts/research/label_real_corpus.sh)" >&2
