@@ -44,9 +44,10 @@ struct BenchmarkOptions {
   int mapper_min_model_size = 3;
 
   // results.json of a benchmark that ran a merged collection's scenes
-  // alone with the exhaustive method (scripts/collection_benchmark.sh):
-  // each scene's registered images there are what the collection's
-  // methods are compared against. "": no comparison.
+  // alone with the exhaustive method
+  // (scripts/research/collection_benchmark.sh): each scene's registered
+  // images there are what the collection's methods are compared against.
+  // "": no comparison.
   std::string alone_results_path = "";
 
   // Passed to COLMAP: feature_extractor (--ImageReader.*,

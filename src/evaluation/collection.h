@@ -10,10 +10,10 @@
 
 namespace colmap_gcn {
 
-// A merged photo collection (scripts/merge_scenes.sh) names its images
-// "<scene>__<name>", so which place a photo shows is known without labels:
-// pairs across scenes share nothing, and each scene's registration can be
-// compared with that scene reconstructed alone.
+// A merged photo collection (scripts/research/merge_scenes.sh) names its
+// images "<scene>__<name>", so which place a photo shows is known without
+// labels: pairs across scenes share nothing, and each scene's registration
+// can be compared with that scene reconstructed alone.
 
 // The scene of a merged collection's image; "" when the name has no prefix.
 std::string CollectionScene(const std::string& image_name);

@@ -383,8 +383,9 @@ size_t CrossScenePairsInFile(const std::string& path) {
   return count;
 }
 
-// scripts/collection_benchmark.sh on two small generated places: each alone
-// with exhaustive matching, merged, and the merged collection's report.
+// scripts/research/collection_benchmark.sh on two small generated places:
+// each alone with exhaustive matching, merged, and the merged collection's
+// report.
 TEST(CollectionBenchmarkScript, ComparesTheCollectionWithItsScenesAlone) {
   if (RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
   const TemporaryDirectory dir("colmap_gcn_collection");
@@ -414,8 +415,8 @@ TEST(CollectionBenchmarkScript, ComparesTheCollectionWithItsScenesAlone) {
       std::filesystem::path(FrontendExe()).parent_path().parent_path();
   const std::string command =
       "COLMAP_GCN_BUILD=" + ShellQuote(build) + " bash " +
-      ShellQuote(
-          JoinPaths(COLMAP_GCN_SOURCE_DIR, "scripts/collection_benchmark.sh")) +
+      ShellQuote(JoinPaths(COLMAP_GCN_SOURCE_DIR,
+                           "scripts/research/collection_benchmark.sh")) +
       " " + ShellQuote(out) + " knn:3 " +
       ShellQuote(JoinPaths(places, "alpha")) + " " +
       ShellQuote(JoinPaths(places, "beta")) + " " +

@@ -60,7 +60,8 @@ TEST(JsonFile, InvalidFileNamesTheFile) {
       "missing.json");
 }
 
-// scripts/label_real_corpus.sh greps counts as integers from the files.
+// scripts/research/label_real_corpus.sh greps counts as integers from the
+// files.
 TEST(JsonFile, CountsAreWrittenAsIntegers) {
   MethodResult result;
   result.method = "knn:5";

@@ -1,6 +1,6 @@
-// C++ vs the independent PyTorch implementation in scripts/gcn_reference.py:
-// logits and loss gradients w.r.t. every parameter. Skipped when no Python
-// with torch is available.
+// C++ vs the independent PyTorch implementation in
+// scripts/research/gcn_reference.py: logits and loss gradients w.r.t. every
+// parameter. Skipped when no Python with torch is available.
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -28,7 +28,7 @@ bool RunTorchReference(const std::string& args, std::string* output) {
   candidates.push_back("/usr/bin/python3");
   candidates.push_back("python3");
   const std::string script =
-      std::string(COLMAP_GCN_SOURCE_DIR) + "/scripts/gcn_reference.py";
+      std::string(COLMAP_GCN_SOURCE_DIR) + "/scripts/research/gcn_reference.py";
   for (const std::string& python : candidates) {
     const int code =
         test::RunShell(python + " " + script + " check " + args, output);

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Refreshes the measured part of docs/benchmarks.md from a benchmark output
-# folder (default benchmark-out/, written by scripts/benchmark_all.sh): the
+# folder (default benchmark-out/, written by scripts/research/benchmark_all.sh): the
 # text above the "generated below" marker is kept, everything below is
 # replaced by <OUT>/report.md, with figure links pointing into <OUT>.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 OUT="${1:-benchmark-out}"
 DOC=docs/benchmarks.md
-MARKER='<!-- generated below by scripts/benchmark_docs.sh -->'
+MARKER='<!-- generated below by scripts/research/benchmark_docs.sh -->'
 [ -f "$OUT/report.md" ] || { echo "no $OUT/report.md" >&2; exit 1; }
 [ -f "$DOC" ] && grep -qF "$MARKER" "$DOC" || { echo "$DOC lacks the marker" >&2; exit 1; }
 {

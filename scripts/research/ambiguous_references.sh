@@ -4,7 +4,7 @@
 # so the benchmark can label their pairs and tell a folded model from a
 # correct one.
 #
-#   scripts/ambiguous_references.sh [OUTPUT_DIR]
+#   scripts/research/ambiguous_references.sh [OUTPUT_DIR]
 #
 # For each scene, OUTPUT_DIR/<scene>/ gets images/ (a link to the shared
 # photos) and gt/ (a COLMAP text model), ready for
@@ -26,12 +26,11 @@
 # Environment: SHARED (default ../shared/datasets), OVERLAP (default 3),
 # NUM_THREADS (default 2). Outputs that exist are kept (rerunning resumes).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 OUT="${1:-ambiguous-scenes}"
-SHARED="${SHARED:-../shared/datasets}"
 OVERLAP="${OVERLAP:-3}"
 THREADS="${NUM_THREADS:-2}"
-COLMAP="${COLMAP_BIN:-colmap}"  # Debian's COLMAP 3.8
+COLMAP="${COLMAP_BIN:-colmap}"  # Debian's COLMAP 3.8, not our front end
 
 for scene in books cereal oats street; do
   src="$SHARED/$scene/images"

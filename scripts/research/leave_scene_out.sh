@@ -6,9 +6,9 @@
 # once, by the model of the fold that left it out, in one table
 # (`colmap gcn_model_evaluator --folds_path`).
 #
-#   scripts/leave_scene_out.sh [CORPUS] [OUT] [extra gcn_train flags...]
+#   scripts/research/leave_scene_out.sh [CORPUS] [OUT] [extra gcn_train flags...]
 #
-# CORPUS (default ../corpus, built by scripts/label_real_corpus.sh) holds
+# CORPUS (default ../corpus, built by scripts/research/label_real_corpus.sh) holds
 # one labelled scene per folder; OUT (default CORPUS/leave-scene-out)
 # receives fold<i>.gcnmodel, fold<i>.train.txt, folds.txt and table.md,
 # collection.gcnmodel, collection.train.txt and collection.md.
@@ -22,23 +22,18 @@
 # EXTRA_TRAIN (comma list of further scenes in CORPUS every fold trains on,
 # e.g. synthetic ones; never evaluated here).
 set -euo pipefail
-REPO="$(cd "$(dirname "$0")/.." && pwd)"
-CORPUS="$(realpath -m "${1:-$REPO/../corpus}")"
-OUT="$(realpath -m "${2:-$CORPUS/leave-scene-out}")"
+source "$(dirname "$0")/common.sh"
+CORPUS="$(from_caller "${1:-$REPO/../corpus}")"
+OUT="$(from_caller "${2:-$CORPUS/leave-scene-out}")"
 shift $(($# < 2 ? $# : 2))
-cd "$REPO"
-BUILD="${COLMAP_GCN_BUILD:-build}"
-COLMAP="$BUILD/bin/colmap"
-SEED="${SEED:-0}"
-THREADS="${THREADS:-2}"
 EVAL_FLAGS=()
 if [ -n "${ONNX_PATH:-}" ]; then EVAL_FLAGS=(--onnx_path "$ONNX_PATH"); fi
 
 if [ ! -d "$CORPUS" ]; then
-  echo "leave_scene_out: $CORPUS not found (build it with scripts/label_real_corpus.sh)" >&2
+  echo "leave_scene_out: $CORPUS not found (build it with scripts/research/label_real_corpus.sh)" >&2
   exit 1
 fi
-source "$REPO/scripts/corpus_folds.sh"
+source "$REPO/scripts/research/corpus_folds.sh"
 NUM_FOLDS=${#FOLDS[@]}
 for ((i = 0; i < NUM_FOLDS; ++i)); do
   FOLDS[$i]="$(present "${FOLDS[$i]}")"

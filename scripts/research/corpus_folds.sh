@@ -1,4 +1,4 @@
-# Sourced by scripts/leave_scene_out.sh and scripts/train_default_model.sh:
+# Sourced by scripts/research/leave_scene_out.sh and scripts/research/train_default_model.sh:
 # the recipe's gcn_train settings and the folds of the real labelled corpus
 # (docs/model_card.md), the folds fixed before
 # any fold was trained: sizes spread over the folds, each fold one small,

@@ -3,7 +3,7 @@
 # it (docs/benchmarks.md); training and evaluation take the same collection
 # in memory as "a+b+c" (docs/model_card.md).
 #
-#   scripts/merge_scenes.sh OUT BENCHMARK_DIR SCENE SCENE...
+#   scripts/research/merge_scenes.sh OUT BENCHMARK_DIR SCENE SCENE...
 #
 # BENCHMARK_DIR holds the scenes as `colmap gcn_benchmark` prepares them
 # (<scene>/base.db, <scene>/labels/labels.csv). OUT (must not exist) gets
@@ -18,10 +18,10 @@ if [ "$#" -lt 4 ]; then
   echo "usage: $0 OUT BENCHMARK_DIR SCENE SCENE..." >&2
   exit 2
 fi
-OUT="$1"
-BENCH="$2"
+source "$(dirname "$0")/common.sh"
+OUT="$(from_caller "$1")"
+BENCH="$(from_caller "$2")"
 shift 2
-SHARED="${SHARED:-$(dirname "$0")/../../shared/datasets}"
 if [ -e "$OUT" ]; then
   echo "merge_scenes: $OUT exists" >&2
   exit 1

@@ -3,7 +3,7 @@
 # unrelated places in one database, matched by each method, against each
 # place reconstructed alone with exhaustive matching.
 #
-#   scripts/collection_benchmark.sh OUT METHODS SCENE_DIR... [-- OPTION...]
+#   scripts/research/collection_benchmark.sh OUT METHODS SCENE_DIR... [-- OPTION...]
 #
 # SCENE_DIRs are image-folder scenes with one parent (e.g. ../shared/
 # datasets/books); METHODS a gcn_benchmark method list (e.g.
@@ -15,7 +15,7 @@
 # interrupted run resumes:
 #   OUT/alone/       every scene alone, exhaustive (features, labels and the
 #                    registered images the collection is compared against);
-#   OUT/collection/  the scenes merged (scripts/merge_scenes.sh);
+#   OUT/collection/  the scenes merged (scripts/research/merge_scenes.sh);
 #   OUT/run/         the collection benchmarked with METHODS: report.md
 #                    "Collection" gives cross-scene pairs, the estimated
 #                    exhaustive time and each scene's registration.
@@ -25,20 +25,19 @@ if [ "$#" -lt 4 ]; then
   echo "usage: $0 OUT METHODS SCENE_DIR SCENE_DIR... [-- OPTION...]" >&2
   exit 2
 fi
-REPO="$(cd "$(dirname "$0")/.." && pwd)"
-OUT="$(realpath -m "$1")"
+source "$(dirname "$0")/common.sh"
+# Back to the caller's directory: OPTIONs keep their relative paths.
+cd "$CALLER_PWD"
+OUT="$(from_caller "$1")"
 METHODS="$2"
 shift 2
 SCENES=()
 while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do
-  SCENES+=("$(realpath -m "$1")")
+  SCENES+=("$(from_caller "$1")")
   shift
 done
 [ "$#" -gt 0 ] && shift
 OPTIONS=("$@")
-BUILD="${COLMAP_GCN_BUILD:-build}"
-case "$BUILD" in /*) ;; *) BUILD="$REPO/$BUILD" ;; esac
-COLMAP="$BUILD/bin/colmap"
 if [ ! -x "$COLMAP" ]; then
   echo "collection_benchmark: no $COLMAP (build first, or set COLMAP_GCN_BUILD)" >&2
   exit 1
@@ -86,7 +85,7 @@ SCENE_DIR="$OUT/run/collection"
 if [ ! -f "$SCENE_DIR/extraction.json" ]; then
   echo "collection_benchmark: 2/3 merging"
   rm -rf "$DATA" "$SCENE_DIR"
-  SHARED="$PARENT" "$REPO/scripts/merge_scenes.sh" "$DATA" "$OUT/alone" \
+  SHARED="$PARENT" "$REPO/scripts/research/merge_scenes.sh" "$DATA" "$OUT/alone" \
     "${NAMES[@]}"
   mkdir -p "$SCENE_DIR/labels"
   cp "$DATA/base.db" "$SCENE_DIR/base.db"
