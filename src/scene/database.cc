@@ -197,16 +197,21 @@ size_t Database::NumDescriptors() const {
   return SqliteQueryCount(db_, path_, "SELECT SUM(rows) FROM descriptors");
 }
 
-std::vector<DatabaseImage> Database::ReadAllImages() const {
-  SqliteStatement stmt(db_,
-                       path_,
-                       "SELECT image_id, name, camera_id FROM images "
-                       "ORDER BY image_id");
+std::vector<DatabaseImage> Database::ReadImagesWhere(
+    const std::string& condition) const {
+  const std::string sql = "SELECT image_id, name, camera_id FROM images" +
+                          (condition.empty() ? "" : " WHERE " + condition) +
+                          " ORDER BY image_id";
+  SqliteStatement stmt(db_, path_, sql.c_str());
   std::vector<DatabaseImage> images;
   while (stmt.Step()) {
     images.push_back(ReadImageRow(stmt));
   }
   return images;
+}
+
+std::vector<DatabaseImage> Database::ReadAllImages() const {
+  return ReadImagesWhere("");
 }
 
 FeatureDescriptors Database::ReadDescriptors(const image_t image_id) const {
@@ -257,17 +262,9 @@ std::vector<image_pair_t> Database::ReadMatchesPairIds() const {
 }
 
 std::vector<DatabaseImage> Database::ReadImagesWithoutFeatures() const {
-  SqliteStatement stmt(db_,
-                       path_,
-                       "SELECT image_id, name, camera_id FROM images WHERE "
-                       "image_id NOT IN (SELECT image_id FROM keypoints) OR "
-                       "image_id NOT IN (SELECT image_id FROM descriptors) "
-                       "ORDER BY image_id");
-  std::vector<DatabaseImage> images;
-  while (stmt.Step()) {
-    images.push_back(ReadImageRow(stmt));
-  }
-  return images;
+  return ReadImagesWhere(
+      "image_id NOT IN (SELECT image_id FROM keypoints) OR "
+      "image_id NOT IN (SELECT image_id FROM descriptors)");
 }
 
 void Database::UpdateCamera(const DatabaseCamera& camera) {

@@ -138,6 +138,9 @@ class Database {
 
  private:
   void DetectSchema();
+  // The images rows matching an SQL condition ("" for all), by image_id.
+  std::vector<DatabaseImage> ReadImagesWhere(
+      const std::string& condition) const;
   void RequireWritable() const;
 
   std::string path_;

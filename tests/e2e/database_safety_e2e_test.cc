@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include "e2e_scene.h"
 #include "scene/colmap_scene_fixture.h"
 #include "scene/database.h"
 #include "scene/database_inspector.h"
@@ -34,6 +35,8 @@ namespace fs = std::filesystem;
 using test::DatabaseInspector;
 using test::ExecuteSql;
 using test::FrontendExe;
+using test::GeometryPairIds;
+using test::IntegrityCheck;
 using test::LeaveCommittedDataInWal;
 using test::QuerySqlInt;
 using test::RealColmapExe;
@@ -65,24 +68,8 @@ int Colmap(const std::string& args, std::string* output) {
       output);
 }
 
-std::set<int64_t> GeometryPairIds(const std::string& path) {
-  std::set<int64_t> ids;
-  const Database database(path);
-  for (const auto& info : database.ReadTwoViewGeometryInfos()) {
-    ids.insert(static_cast<int64_t>(info.pair_id));
-  }
-  return ids;
-}
-
 int64_t NumGeometries(const std::string& path) {
   return QuerySqlInt(path, "SELECT COUNT(*) FROM two_view_geometries;");
-}
-
-std::string IntegrityCheck(const std::string& path) {
-  std::string output;
-  RunShell("sqlite3 " + ShellQuote(path) + " 'PRAGMA integrity_check;'",
-           &output);
-  return StringTrim(output);
 }
 
 // The database as the user finds it after a run: sound, one row per pair,

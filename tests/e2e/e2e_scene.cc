@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "scene/database.h"
 #include "scene/reconstruction.h"
 #include "test_utils.h"
 #include "util/file.h"
@@ -11,6 +12,22 @@
 
 namespace colmap_gcn {
 namespace test {
+
+std::string IntegrityCheck(const std::string& path) {
+  std::string output;
+  RunShell("sqlite3 " + ShellQuote(path) + " 'PRAGMA integrity_check;'",
+           &output);
+  return StringTrim(output);
+}
+
+std::set<int64_t> GeometryPairIds(const std::string& path) {
+  std::set<int64_t> ids;
+  const Database database(path);
+  for (const auto& info : database.ReadTwoViewGeometryInfos()) {
+    ids.insert(static_cast<int64_t>(info.pair_id));
+  }
+  return ids;
+}
 
 std::string FrontendBinDir() {
   return FrontendExe().substr(0, FrontendExe().find_last_of('/'));

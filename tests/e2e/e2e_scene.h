@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstdint>
+#include <set>
 #include <string>
 
 namespace colmap_gcn {
@@ -16,6 +18,13 @@ std::string FrontendBinDir();
 int RunFrontend(const std::string& args,
                 std::string* output = nullptr,
                 const std::string& env = "");
+
+// SQLite's integrity_check of the database at path, as the sqlite3 shell
+// prints it ("ok" when sound).
+std::string IntegrityCheck(const std::string& path);
+
+// The pair ids of path's two_view_geometries rows.
+std::set<int64_t> GeometryPairIds(const std::string& path);
 
 // A scene the e2e suites share: gcn_synth's ordinary family (seed 1)
 // extracted by COLMAP into a database, with the generator's intrinsics as a

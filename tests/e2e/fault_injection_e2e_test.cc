@@ -30,6 +30,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::DatabaseInspector;
+using test::GeometryPairIds;
+using test::IntegrityCheck;
 using test::QuerySqlInt;
 using test::RealColmapExe;
 using test::RunFrontend;
@@ -88,22 +90,6 @@ std::vector<std::string> ErrorLines(const std::string& output) {
 std::regex CauseOf(const std::string& error) {
   return std::regex(error == "EIO" ? "I/O error" : "disk (is )?full",
                     std::regex::icase);
-}
-
-std::string IntegrityCheck(const std::string& path) {
-  std::string output;
-  RunShell("sqlite3 " + ShellQuote(path) + " 'PRAGMA integrity_check;'",
-           &output);
-  return StringTrim(output);
-}
-
-std::set<int64_t> GeometryPairIds(const std::string& path) {
-  std::set<int64_t> ids;
-  const Database database(path);
-  for (const auto& info : database.ReadTwoViewGeometryInfos()) {
-    ids.insert(static_cast<int64_t>(info.pair_id));
-  }
-  return ids;
 }
 
 // Pairs by image name: image ids follow COLMAP's extraction order.
