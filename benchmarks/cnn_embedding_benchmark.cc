@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "controllers/gcn_model_pairing.h"
-#include "gcn/gcn_trainer.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/global_descriptors.h"
+#include "training/gcn_trainer.h"
 #include "training/gcn_training.h"
 #include "util/error.h"
 #include "util/file.h"

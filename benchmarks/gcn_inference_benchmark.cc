@@ -23,11 +23,11 @@
 #include <benchmark/benchmark.h>
 
 #include "gcn/gcn_inference.h"
-#include "gcn/gcn_network.h"
 #include "gcn/gcn_pair_generator.h"
-#include "gcn/gcn_trainer.h"
 #include "gcn_benchmark_data.h"
 #include "math/sgemm.h"
+#include "training/gcn_network.h"
+#include "training/gcn_trainer.h"
 #include "util/timer.h"
 
 namespace colmap_gcn {

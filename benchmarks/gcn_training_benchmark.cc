@@ -9,9 +9,9 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "gcn/gcn_trainer.h"
 #include "gcn_benchmark_data.h"
 #include "math/sgemm.h"
+#include "training/gcn_trainer.h"
 #include "util/timer.h"
 
 int main(int argc, char** argv) {

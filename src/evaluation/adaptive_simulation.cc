@@ -1,10 +1,15 @@
 #include "evaluation/adaptive_simulation.h"
 
 #include <algorithm>
+#include <memory>
 #include <set>
 #include <unordered_set>
 
+#include "controllers/adaptive_pairing.h"
+#include "controllers/gcn_model_pairing.h"
 #include "evaluation/collection.h"
+#include "retrieval/knn_pairing.h"
+#include "scene/database_copy.h"
 #include "util/error.h"
 
 namespace colmap_gcn {
@@ -132,6 +137,190 @@ std::vector<SimulatedRound> SimulatePairGenerator(
     rounds.push_back(round);
   }
   return rounds;
+}
+
+namespace {
+
+// The first `count` distinct pairs of `candidates` in the given order.
+std::vector<ImagePair> FirstPairs(const std::vector<PairCandidate>& candidates,
+                                  size_t count) {
+  std::vector<ImagePair> pairs;
+  std::unordered_set<image_pair_t> seen;
+  for (const PairCandidate& candidate : candidates) {
+    if (pairs.size() >= count) break;
+    if (candidate.image_id1 == candidate.image_id2) continue;
+    if (seen.insert(ImagePairToPairId(candidate.image_id1, candidate.image_id2))
+            .second) {
+      pairs.emplace_back(candidate.image_id1, candidate.image_id2);
+    }
+  }
+  return pairs;
+}
+
+// Nothing is written beside the database: every embedding cache off.
+GcnMatchingOptions WithoutCaches(GcnMatchingOptions options) {
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive")
+      .gcn.use_vlad_cache = false;
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive")
+      .knn.descriptors.use_cache = false;
+  options.generators.Get<GcnModelPairingOptions>("gcn").use_vlad_cache = false;
+  options.generators.Get<GraphMatchPairingOptions>("graphmatch")
+      .knn.descriptors.use_cache = false;
+  options.generators.Get<KnnPairingOptions>("knn").descriptors.use_cache =
+      false;
+  return options;
+}
+
+// The GCN's candidates by decreasing score, cut at `count` pairs.
+std::vector<ImagePair> GcnTopPairs(const GcnMatchingOptions& options,
+                                   const Database& database,
+                                   size_t count) {
+  std::vector<image_t> image_ids;
+  std::vector<PairCandidate> gcn = GcnModelCandidates(
+      options.generators.Get<AdaptiveGcnPairingOptions>("adaptive").gcn,
+      database,
+      &image_ids);
+  std::stable_sort(gcn.begin(),
+                   gcn.end(),
+                   [](const PairCandidate& a, const PairCandidate& b) {
+                     return a.score > b.score;
+                   });
+  return FirstPairs(gcn, count);
+}
+
+// kNN at equal TAM: every image's nearest neighbour, then every image's
+// second, ... (by similarity within a rank), cut at `count` pairs.
+std::vector<ImagePair> KnnPairsByRank(const GcnMatchingOptions& options,
+                                      const Database& database,
+                                      size_t count) {
+  const KnnPairingOptions& knn_options =
+      options.generators.Get<GraphMatchPairingOptions>("graphmatch").knn;
+  std::vector<image_t> image_ids;
+  const std::vector<PairCandidate> knn =
+      SimilarityCandidates(knn_options, database, &image_ids);
+  const size_t n = image_ids.size();
+  const size_t k = n == 0 ? 0 : knn.size() / n;
+  std::vector<PairCandidate> by_rank;
+  for (size_t rank = 0; rank < k; ++rank) {
+    std::vector<PairCandidate> level;
+    for (size_t i = 0; i < n; ++i) level.push_back(knn[i * k + rank]);
+    std::stable_sort(level.begin(),
+                     level.end(),
+                     [](const PairCandidate& a, const PairCandidate& b) {
+                       return a.score > b.score;
+                     });
+    by_rank.insert(by_rank.end(), level.begin(), level.end());
+  }
+  return FirstPairs(by_rank, count);
+}
+
+std::vector<ImagePair> AllPairs(const VerificationTable& table) {
+  std::vector<ImagePair> all;
+  for (size_t i = 0; i < table.Images().size(); ++i) {
+    for (size_t j = i + 1; j < table.Images().size(); ++j) {
+      all.emplace_back(table.Images()[i].image_id, table.Images()[j].image_id);
+    }
+  }
+  return all;
+}
+
+// The baselines at the replayed generator's strong cut, after its own line.
+std::vector<NamedPairSetQuality> CompareBaselines(
+    const GcnMatchingOptions& options,
+    const Database& database,
+    const VerificationTable& table,
+    const PairLabels* labels,
+    int cut,
+    const PairSetQuality& replayed) {
+  auto evaluate = [&](const std::vector<ImagePair>& pairs) {
+    return EvaluatePairSet(pairs, table, labels, cut);
+  };
+  std::vector<NamedPairSetQuality> lines;
+  lines.push_back({options.pairing, replayed});
+  lines.push_back(
+      {"gcn top-TAM scores",
+       evaluate(GcnTopPairs(options, database, replayed.num_pairs))});
+  GcnMatchingOptions single = options;
+  single.pairing = "gcn";
+  lines.push_back(
+      {"gcn (model threshold)",
+       evaluate(CreatePairGenerator(single, database)->AllPairs())});
+  lines.push_back(
+      {"knn at equal TAM",
+       evaluate(KnnPairsByRank(options, database, replayed.num_pairs))});
+  if (options.pairing != "graphmatch") {
+    GcnMatchingOptions graphmatch = options;
+    graphmatch.pairing = "graphmatch";
+    std::unique_ptr<PairGenerator> baseline =
+        CreatePairGenerator(graphmatch, database);
+    std::vector<ImagePair> baseline_pairs;
+    SimulatePairGenerator(baseline.get(), table, labels, cut, &baseline_pairs);
+    lines.push_back({"graphmatch", evaluate(baseline_pairs)});
+  }
+  lines.push_back({"exhaustive", evaluate(AllPairs(table))});
+  // The ceiling of a loop that learns from strong verifications only: the
+  // labelled matchable pairs among them.
+  lines.push_back(
+      {"exhaustive, strong only", evaluate(table.StrongPairs(cut))});
+  return lines;
+}
+
+}  // namespace
+
+AdaptiveSimulationReport RunAdaptiveSimulation(
+    const AdaptiveSimulationOptions& options) {
+  const GcnMatchingOptions matching = WithoutCaches(options.matching);
+  RecoverHotJournal(options.database_path);
+  const Database database(options.database_path);
+  const VerificationTable table(database);
+  // Without verifications every replayed pair would count as failed and the
+  // table would be all zeros.
+  if (table.NumGeometries() == 0) {
+    ThrowError("database ",
+               options.database_path,
+               " was never matched (its two_view_geometries table is empty); "
+               "gcn_adaptive_simulator replays verification from it: run "
+               "colmap exhaustive_matcher on it first");
+  }
+  std::unique_ptr<PairLabels> labels;
+  if (!options.labels_path.empty()) {
+    labels =
+        std::make_unique<PairLabels>(PairLabels::Read(options.labels_path));
+  }
+  std::unique_ptr<PairGenerator> generator =
+      CreatePairGenerator(matching, database);
+  if (!generator->UsesVerification()) {
+    ThrowError("--GcnMatching.pairing ",
+               matching.pairing,
+               " does not use verification; simulate adaptive or graphmatch");
+  }
+  std::vector<ImagePair> pairs;
+  const std::vector<SimulatedRound> rounds =
+      SimulatePairGenerator(generator.get(), table, labels.get(), 1, &pairs);
+  const auto* adaptive = dynamic_cast<AdaptivePairGenerator*>(generator.get());
+
+  AdaptiveSimulationReport report;
+  report.num_images = table.Images().size();
+  report.strong_cut = adaptive != nullptr ? adaptive->StrongCut() : 1;
+  size_t end = 0;
+  for (size_t r = 0; r < rounds.size(); ++r) {
+    end += rounds[r].num_pairs;
+    const std::vector<ImagePair> prefix(pairs.begin(), pairs.begin() + end);
+    report.rounds.push_back(
+        {"round " + std::to_string(r + 1) + " (+" +
+             std::to_string(rounds[r].num_pairs) + ")",
+         EvaluatePairSet(prefix, table, labels.get(), report.strong_cut)});
+  }
+  if (options.compare) {
+    report.comparisons = CompareBaselines(
+        matching,
+        database,
+        table,
+        labels.get(),
+        report.strong_cut,
+        EvaluatePairSet(pairs, table, labels.get(), report.strong_cut));
+  }
+  return report;
 }
 
 }  // namespace colmap_gcn

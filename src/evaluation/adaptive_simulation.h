@@ -4,6 +4,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "controllers/gcn_matching.h"
 #include "evaluation/labels.h"
 #include "feature/pairing.h"
 #include "scene/database.h"
@@ -74,5 +75,42 @@ std::vector<SimulatedRound> SimulatePairGenerator(
     const PairLabels* labels,
     int strong_cut,
     std::vector<ImagePair>* pairs);
+
+// What `colmap gcn_adaptive_simulator` replays: a generator that uses
+// verification (matching.pairing adaptive or graphmatch) on an exhaustively
+// matched database, which is only read.
+struct AdaptiveSimulationOptions {
+  // An exhaustively matched COLMAP database.
+  std::string database_path;
+  // labels.csv for the recall of labelled matchable pairs; empty: none.
+  std::string labels_path = "";
+  // Also evaluate the single-shot GCN, its top-TAM scores, kNN at equal
+  // TAM, graphmatch and exhaustive matching at the same strong cut.
+  bool compare = true;
+  GcnMatchingOptions matching;
+};
+
+// One line of the simulation's tables: a pair set and what it finds.
+struct NamedPairSetQuality {
+  std::string name;
+  PairSetQuality quality;
+};
+
+struct AdaptiveSimulationReport {
+  size_t num_images = 0;
+  // The generator's strong-verification cut (1 for graphmatch).
+  int strong_cut = 1;
+  // "round r (+n)": the pairs attempted up to and including each round.
+  std::vector<NamedPairSetQuality> rounds;
+  // The replayed generator first, then the baselines (empty without
+  // options.compare).
+  std::vector<NamedPairSetQuality> comparisons;
+};
+
+// Replays options.matching's generator against the database's
+// verifications; throws Error when the database was never matched or the
+// generator does not use verification. Writes no embedding cache.
+AdaptiveSimulationReport RunAdaptiveSimulation(
+    const AdaptiveSimulationOptions& options);
 
 }  // namespace colmap_gcn

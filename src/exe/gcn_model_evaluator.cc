@@ -1,32 +1,51 @@
 #include "exe/gcn_model_evaluator.h"
 
 #include <cstdio>
-#include <fstream>
 
-#include "controllers/gcn_model_pairing.h"
-#include "gcn/model_file.h"
-#include "training/model_evaluation.h"
-#include "util/error.h"
-#include "util/file.h"
+#include "training/model_evaluation_run.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
+namespace {
+
+void PrintSensitivity(const GcnModelEvaluation& evaluation,
+                      const std::string& sensitivity_path) {
+  const GcnModelInfo& info = evaluation.models.back().info;
+  std::printf(
+      "\nsensitivity (mean over scenes; others at k1 %d, k2 %d, "
+      "u %d, threshold %.2f)\n%-10s %6s %6s %6s %6s %8s\n",
+      info.test_k1,
+      info.test_k2,
+      info.test_u,
+      info.threshold,
+      "parameter",
+      "value",
+      "P",
+      "R",
+      "F",
+      "pairs/im");
+  for (const auto& point : evaluation.sensitivity) {
+    std::printf("%-10s %6g %6.3f %6.3f %6.3f %8.2f\n",
+                point.parameter.c_str(),
+                point.value,
+                point.precision,
+                point.recall,
+                point.f,
+                point.pairs_per_image);
+  }
+  std::printf("wrote %s/sensitivity.csv and sensitivity_*.png\n",
+              sensitivity_path.c_str());
+}
+
+}  // namespace
 
 int RunGcnModelEvaluator(int argc, char** argv) {
-  std::string benchmark_path;
+  GcnModelEvaluationOptions options;
   std::string scenes;
   std::string model_path;
-  std::string output_path;
-  std::string sensitivity_path;
   std::string folds_path;
-  double tau_mo = -1;
-  double tau_ct = -1;
-  int max_k = 100;
-  int num_threads = -1;
-  std::string onnx_path;
-  SceneImageOptions images;
   OptionManager manager(
       "gcn_model_evaluator",
       "Compares a GCN model with fixed-k retrieval on labelled scenes "
@@ -34,7 +53,7 @@ int RunGcnModelEvaluator(int argc, char** argv) {
       "--sensitivity_path, sweeps k1, k2, u and the threshold. Never "
       "evaluate on scenes the model was trained on.");
   manager.AddRequiredOption("benchmark_path",
-                            &benchmark_path,
+                            &options.benchmark_path,
                             "gcn_benchmark output folder with the scenes");
   manager.AddDefaultOption(
       "scenes",
@@ -43,8 +62,9 @@ int RunGcnModelEvaluator(int argc, char** argv) {
       "unrelated); empty: every labelled scene");
   manager.AddDefaultOption(
       "model_path", &model_path, "empty: the default model");
-  manager.AddDefaultOption(
-      "output_path", &output_path, "markdown file for the table (optional)");
+  manager.AddDefaultOption("output_path",
+                           &options.output_path,
+                           "markdown file for the table (optional)");
   manager.AddDefaultOption(
       "folds_path",
       &folds_path,
@@ -52,26 +72,34 @@ int RunGcnModelEvaluator(int argc, char** argv) {
       "\"<model path> <scene>[,<scene>...]\", each scene evaluated by its "
       "line's model, all in one table");
   manager.AddDefaultOption("sensitivity_path",
-                           &sensitivity_path,
+                           &options.sensitivity_path,
                            "folder for sensitivity.csv and plots (optional)");
-  manager.AddDefaultOption("max_k", &max_k, "largest per-image k compared");
   manager.AddDefaultOption(
-      "tau_mo", &tau_mo, "label thresholds; < 0: the model's training ones");
-  manager.AddDefaultOption("tau_ct", &tau_ct);
-  manager.AddDefaultOption("num_threads", &num_threads, "-1: all cores");
+      "max_k", &options.max_k, "largest per-image k compared");
+  manager.AddDefaultOption("tau_mo",
+                           &options.tau_mo,
+                           "label thresholds; < 0: the model's training ones");
+  manager.AddDefaultOption("tau_ct", &options.tau_ct);
   manager.AddDefaultOption(
-      "onnx_path", &onnx_path, "the ONNX network of a CNN-embedding model");
+      "num_threads", &options.num_threads, "-1: all cores");
+  manager.AddDefaultOption("onnx_path",
+                           &options.onnx_path,
+                           "the ONNX network of a CNN-embedding model");
   manager.AddDefaultOption("image_root",
-                           &images.image_root,
+                           &options.images.image_root,
                            "folder with <scene>/images (CNN models)");
   manager.AddDefaultOption(
       "onnx_cache_dir",
-      &images.cnn_cache_dir,
+      &options.images.cnn_cache_dir,
       "CNN descriptor caches; empty: beside each scene's base.db");
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
   manager.Check([&] {
+    const int& max_k = options.max_k;
+    const double& tau_mo = options.tau_mo;
+    const double& tau_ct = options.tau_ct;
+    const int& num_threads = options.num_threads;
     CHECK_OPTION_GE(max_k, 1);
     CHECK_OPTION(tau_mo,
                  tau_mo < 0 || (tau_mo > 0 && tau_mo <= 1),
@@ -82,6 +110,7 @@ int RunGcnModelEvaluator(int argc, char** argv) {
     CHECK_OPTION_NUM_THREADS(num_threads);
   });
   manager.Check([&] {
+    const std::string& sensitivity_path = options.sensitivity_path;
     CHECK_OPTION(folds_path,
                  folds_path.empty() || (model_path.empty() && scenes.empty()),
                  "not be combined with --model_path or --scenes");
@@ -89,81 +118,24 @@ int RunGcnModelEvaluator(int argc, char** argv) {
                  sensitivity_path.empty() || folds_path.empty(),
                  "not be combined with --folds_path");
   });
-  std::vector<EvaluationFold> folds;
-  if (folds_path.empty()) {
-    folds.push_back({model_path.empty() ? DefaultGcnModelPath() : model_path,
-                     SplitCommaList(scenes)});
-  } else {
-    folds = ReadEvaluationFolds(folds_path);
-  }
-  // Each fold's scenes embedded and compared with the fold's own model.
-  std::vector<FixedKComparison> comparisons;
-  std::vector<GcnTrainingScene> embedded;
-  GcnModel model;
-  for (const auto& fold : folds) {
-    model = ReadGcnModel(fold.model_path);
-    PairLabelOptions labels;
-    labels.min_overlap = tau_mo < 0 ? model.info.tau_mo : tau_mo;
-    labels.min_common_track_ratio = tau_ct < 0 ? model.info.tau_ct : tau_ct;
-    labels.Check();
-    embedded =
-        EmbedScenesForModel(model,
-                            FindLabelledScenes(benchmark_path, fold.scenes),
-                            labels,
-                            num_threads,
-                            onnx_path,
-                            images);
-    const std::vector<FixedKComparison> fold_comparisons =
-        CompareWithFixedK(model, embedded, max_k, num_threads);
-    comparisons.insert(
-        comparisons.end(), fold_comparisons.begin(), fold_comparisons.end());
+  options.folds =
+      folds_path.empty()
+          ? std::vector<EvaluationFold>{{model_path, SplitCommaList(scenes)}}
+          : ReadEvaluationFolds(folds_path);
+
+  const GcnModelEvaluation evaluation = EvaluateGcnModels(options);
+  for (const EvaluatedGcnModel& model : evaluation.models) {
     std::printf("model %s (k1 %d, k2 %d, u %d, threshold %.2f): %s\n",
-                fold.model_path.c_str(),
+                model.model_path.c_str(),
                 model.info.test_k1,
                 model.info.test_k2,
                 model.info.test_u,
                 model.info.threshold,
-                StringJoin(fold.scenes, ",").c_str());
+                StringJoin(model.scenes, ",").c_str());
   }
-  const std::string table = FormatFixedKComparison(comparisons);
-  std::printf("\n%s", table.c_str());
-  if (!output_path.empty()) {
-    std::ofstream file(output_path);
-    file << table;
-    if (!file) ThrowError("cannot write ", output_path);
-  }
-  if (!sensitivity_path.empty()) {
-    GcnSensitivityOptions options;
-    options.num_threads = num_threads;
-    const auto points = ComputeGcnSensitivity(model, embedded, options);
-    WriteGcnSensitivity(
-        points,
-        "mean over " + std::to_string(embedded.size()) + " held-out scenes",
-        sensitivity_path);
-    std::printf(
-        "\nsensitivity (mean over scenes; others at k1 %d, k2 %d, "
-        "u %d, threshold %.2f)\n%-10s %6s %6s %6s %6s %8s\n",
-        model.info.test_k1,
-        model.info.test_k2,
-        model.info.test_u,
-        model.info.threshold,
-        "parameter",
-        "value",
-        "P",
-        "R",
-        "F",
-        "pairs/im");
-    for (const auto& point : points) {
-      std::printf("%-10s %6g %6.3f %6.3f %6.3f %8.2f\n",
-                  point.parameter.c_str(),
-                  point.value,
-                  point.precision,
-                  point.recall,
-                  point.f,
-                  point.pairs_per_image);
-    }
-    std::printf("wrote %s/sensitivity.csv and sensitivity_*.png\n",
-                sensitivity_path.c_str());
+  std::printf("\n%s", evaluation.table.c_str());
+  if (!options.sensitivity_path.empty()) {
+    PrintSensitivity(evaluation, options.sensitivity_path);
   }
   return 0;
 }

@@ -4,20 +4,13 @@
 #include <cstdio>
 #include <iostream>
 
-#include "gcn/model_file.h"
-#include "training/gcn_training.h"
-#include "training/model_evaluation.h"
-#include "util/error.h"
+#include "training/gcn_training_run.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
-#include "util/timer.h"
 
 namespace colmap_gcn {
 namespace {
-
-// The largest per-image k of the fixed-k baselines (the paper's k range).
-const int kMaxFixedK = 100;
 
 // --GcnTraining.onnx_* (the CNN embedding, docs/retrieval.md) and where
 // the scenes' images are.
@@ -60,15 +53,80 @@ void AddCnnTrainingOptions(OptionManager* manager,
       "CNN descriptor caches; empty: beside each scene's base.db");
 }
 
+// --GcnTraining.*: labels, QES, network, optimiser, threshold and
+// embedding. The list flags go to *gcn_dims and *lr_decay_epochs.
+void AddGcnTrainingFlags(OptionManager* manager,
+                         GcnTrainingPipelineOptions* options,
+                         std::string* gcn_dims,
+                         std::string* lr_decay_epochs) {
+  GcnTrainingOptions* training = &options->training;
+  manager->AddDefaultOption("GcnTraining.tau_mo", &options->labels.min_overlap);
+  manager->AddDefaultOption("GcnTraining.tau_ct",
+                            &options->labels.min_common_track_ratio);
+  manager->AddDefaultOption("GcnTraining.k1", &training->qes.k1);
+  manager->AddDefaultOption("GcnTraining.k2", &training->qes.k2);
+  manager->AddDefaultOption("GcnTraining.u", &training->qes.u);
+  manager->AddDefaultOption("GcnTraining.test_k1", &training->test_qes.k1);
+  manager->AddDefaultOption("GcnTraining.test_k2", &training->test_qes.k2);
+  manager->AddDefaultOption("GcnTraining.test_u", &training->test_qes.u);
+  manager->AddEnumOption(
+      "GcnTraining.optimizer", &training->optimizer, GcnOptimizerNames());
+  manager->AddDefaultOption("GcnTraining.learning_rate",
+                            &training->learning_rate);
+  manager->AddDefaultOption("GcnTraining.num_epochs", &training->num_epochs);
+  manager->AddDefaultOption("GcnTraining.batch_size", &training->batch_size);
+  manager->AddDefaultOption("GcnTraining.gcn_dims",
+                            gcn_dims,
+                            "output sizes of the graph convolutions "
+                            "(paper / gcn_clustering: 512,512,256,256)");
+  manager->AddDefaultOption("GcnTraining.fc_dim", &training->shape.fc_dim);
+  manager->AddEnumOption("GcnTraining.aggregation",
+                         &training->aggregation,
+                         GcnAggregationNames(),
+                         "symmetric: the paper's L^-1/2 A L^-1/2; row: "
+                         "gcn_clustering's neighbour mean");
+  manager->AddEnumOption("GcnTraining.feature_scaling",
+                         &training->feature_scaling,
+                         QesFeatureScalingNames(),
+                         "none: node features e_v - e_q; query: divided by "
+                         "the query's RMS 1-hop distance (scale-free)");
+  manager->AddEnumOption("GcnTraining.structure_features",
+                         &training->structure_features,
+                         QesStructureFeaturesNames(),
+                         "none; reciprocal: append each node's kNN ranks "
+                         "to and from the query and its neighbour overlaps "
+                         "with the query; reciprocal_only: those and the "
+                         "query-scaled distance, without e_v - e_q");
+  manager->AddEnumOption("GcnTraining.initialization",
+                         &training->initialization,
+                         GcnInitializationNames(),
+                         "docs/gcn.md");
+  manager->AddDefaultOption("GcnTraining.lr_decay_epochs",
+                            lr_decay_epochs,
+                            "epochs (0-based) where the rate drops x0.1");
+  manager->AddDefaultOption("GcnTraining.positive_weight",
+                            &training->positive_weight,
+                            "<= 0: balanced");
+  manager->AddDefaultOption("GcnTraining.early_stopping_patience",
+                            &training->early_stopping_patience);
+  manager->AddDefaultOption("GcnTraining.threshold",
+                            &options->threshold,
+                            "stored in the model; < 0: the one maximising F "
+                            "on the validation scenes");
+  manager->AddDefaultOption("GcnTraining.seed", &training->seed);
+  manager->AddDefaultOption("GcnTraining.num_threads", &training->num_threads);
+  manager->AddDefaultOption(
+      "GcnTraining.embedding", &options->embedding, "vlad | onnx | vlad+onnx");
+}
+
 }  // namespace
 
 int RunGcnTrain(int argc, char** argv) {
-  std::string benchmark_path;
-  std::string output_path;
+  GcnTrainingRunOptions run;
   std::string scenes;
   std::string validation_scenes;
   std::string test_scenes;
-  GcnTrainingPipelineOptions options;
+  GcnTrainingPipelineOptions& options = run.pipeline;
   GcnTrainingOptions& training = options.training;
   OptionManager manager(
       "gcn_train",
@@ -76,9 +134,9 @@ int RunGcnTrain(int argc, char** argv) {
       "`colmap gcn_benchmark` (<benchmark_path>/<scene>/base.db and "
       "labels/labels.csv) and writes a model file.");
   manager.AddRequiredOption("benchmark_path",
-                            &benchmark_path,
+                            &run.benchmark_path,
                             "gcn_benchmark output folder with the scenes");
-  manager.AddRequiredOption("output_path", &output_path, "model file");
+  manager.AddRequiredOption("output_path", &run.output_path, "model file");
   manager.AddDefaultOption(
       "scenes",
       &scenes,
@@ -89,65 +147,9 @@ int RunGcnTrain(int argc, char** argv) {
                            "for early stopping; empty: held-out queries");
   manager.AddDefaultOption(
       "test_scenes", &test_scenes, "held out entirely; GCN vs kNN is printed");
-  manager.AddDefaultOption("GcnTraining.tau_mo", &options.labels.min_overlap);
-  manager.AddDefaultOption("GcnTraining.tau_ct",
-                           &options.labels.min_common_track_ratio);
-  manager.AddDefaultOption("GcnTraining.k1", &training.qes.k1);
-  manager.AddDefaultOption("GcnTraining.k2", &training.qes.k2);
-  manager.AddDefaultOption("GcnTraining.u", &training.qes.u);
-  manager.AddDefaultOption("GcnTraining.test_k1", &training.test_qes.k1);
-  manager.AddDefaultOption("GcnTraining.test_k2", &training.test_qes.k2);
-  manager.AddDefaultOption("GcnTraining.test_u", &training.test_qes.u);
-  manager.AddEnumOption(
-      "GcnTraining.optimizer", &training.optimizer, GcnOptimizerNames());
-  manager.AddDefaultOption("GcnTraining.learning_rate",
-                           &training.learning_rate);
-  manager.AddDefaultOption("GcnTraining.num_epochs", &training.num_epochs);
-  manager.AddDefaultOption("GcnTraining.batch_size", &training.batch_size);
   std::string gcn_dims = "512,512,256,256";
-  manager.AddDefaultOption("GcnTraining.gcn_dims",
-                           &gcn_dims,
-                           "output sizes of the graph convolutions "
-                           "(paper / gcn_clustering: 512,512,256,256)");
-  manager.AddDefaultOption("GcnTraining.fc_dim", &training.shape.fc_dim);
-  manager.AddEnumOption("GcnTraining.aggregation",
-                        &training.aggregation,
-                        GcnAggregationNames(),
-                        "symmetric: the paper's L^-1/2 A L^-1/2; row: "
-                        "gcn_clustering's neighbour mean");
-  manager.AddEnumOption("GcnTraining.feature_scaling",
-                        &training.feature_scaling,
-                        QesFeatureScalingNames(),
-                        "none: node features e_v - e_q; query: divided by "
-                        "the query's RMS 1-hop distance (scale-free)");
-  manager.AddEnumOption("GcnTraining.structure_features",
-                        &training.structure_features,
-                        QesStructureFeaturesNames(),
-                        "none; reciprocal: append each node's kNN ranks "
-                        "to and from the query and its neighbour overlaps "
-                        "with the query; reciprocal_only: those and the "
-                        "query-scaled distance, without e_v - e_q");
-  manager.AddEnumOption("GcnTraining.initialization",
-                        &training.initialization,
-                        GcnInitializationNames(),
-                        "docs/gcn.md");
   std::string lr_decay_epochs = "2,3";
-  manager.AddDefaultOption("GcnTraining.lr_decay_epochs",
-                           &lr_decay_epochs,
-                           "epochs (0-based) where the rate drops x0.1");
-  manager.AddDefaultOption("GcnTraining.positive_weight",
-                           &training.positive_weight,
-                           "<= 0: balanced");
-  manager.AddDefaultOption("GcnTraining.early_stopping_patience",
-                           &training.early_stopping_patience);
-  manager.AddDefaultOption("GcnTraining.threshold",
-                           &options.threshold,
-                           "stored in the model; < 0: the one maximising F "
-                           "on the validation scenes");
-  manager.AddDefaultOption("GcnTraining.seed", &training.seed);
-  manager.AddDefaultOption("GcnTraining.num_threads", &training.num_threads);
-  manager.AddDefaultOption(
-      "GcnTraining.embedding", &options.embedding, "vlad | onnx | vlad+onnx");
+  AddGcnTrainingFlags(&manager, &options, &gcn_dims, &lr_decay_epochs);
   AddCnnTrainingOptions(&manager, &options.cnn, &options.images);
   manager.AddDefaultOption("Vlad.num_words", &options.vlad.num_words);
   manager.AddDefaultOption("Vlad.dim", &options.vlad.dim);
@@ -177,44 +179,18 @@ int RunGcnTrain(int argc, char** argv) {
     options.Check();
   });
 
-  const std::vector<std::string> validation_names =
-      SplitCommaList(validation_scenes);
-  const std::vector<std::string> test_names = SplitCommaList(test_scenes);
-  std::vector<std::string> held_out = validation_names;
-  held_out.insert(held_out.end(), test_names.begin(), test_names.end());
-  const std::vector<LabelledScene> train = WithoutHeldOutScenes(
-      FindLabelledScenes(benchmark_path, SplitCommaList(scenes)), held_out);
-  if (train.empty()) {
-    ThrowError(
-        "no training scenes left after holding out validation and "
-        "test scenes");
-  }
-  const std::vector<LabelledScene> validation =
-      validation_names.empty()
-          ? std::vector<LabelledScene>()
-          : FindLabelledScenes(benchmark_path, validation_names);
+  run.scenes = SplitCommaList(scenes);
+  run.validation_scenes = SplitCommaList(validation_scenes);
+  run.test_scenes = SplitCommaList(test_scenes);
 
-  const Timer timer;
-  const GcnModel model = TrainGcnModel(train, validation, options);
-  WriteGcnModel(output_path, model);
+  const GcnTrainingRun result = RunGcnTraining(run);
   std::printf("wrote %s (%s) in %.1f s\n",
-              output_path.c_str(),
-              model.info.notes.c_str(),
-              timer.ElapsedSeconds());
-  if (!test_names.empty()) {
-    const std::vector<FixedKComparison> comparisons = CompareWithFixedK(
-        model,
-        EmbedScenesForModel(model,
-                            FindLabelledScenes(benchmark_path, test_names),
-                            options.labels,
-                            training.num_threads,
-                            options.cnn.onnx_path,
-                            options.images,
-                            "--GcnTraining.onnx_path"),
-        kMaxFixedK,
-        training.num_threads);
+              run.output_path.c_str(),
+              result.model.info.notes.c_str(),
+              result.seconds);
+  if (!result.test_comparisons.empty()) {
     std::printf("\nHeld-out scenes\n\n%s",
-                FormatFixedKComparison(comparisons).c_str());
+                FormatFixedKComparison(result.test_comparisons).c_str());
   }
   return 0;
 }

@@ -19,22 +19,6 @@
 #include "util/string.h"
 
 namespace colmap_gcn {
-namespace {
-
-uint64_t PairKey(int i, int j) {
-  return (static_cast<uint64_t>(std::min(i, j)) << 32) |
-         static_cast<uint32_t>(std::max(i, j));
-}
-
-std::unordered_set<uint64_t> PairKeys(
-    const std::vector<std::pair<int, int>>& pairs) {
-  std::unordered_set<uint64_t> keys;
-  for (const auto& [i, j] : pairs) keys.insert(PairKey(i, j));
-  return keys;
-}
-
-}  // namespace
-
 std::vector<LabelledScene> FindLabelledScenes(
     const std::string& benchmark_path, const std::vector<std::string>& names) {
   if (!ExistsDir(benchmark_path)) {
@@ -276,60 +260,149 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
   return made;
 }
 
+namespace {
+
+// Every database of the scenes once, in order, whether a scene or a
+// collection's part.
+std::vector<LabelledScene> SceneDatabases(
+    const std::vector<LabelledScene>& scenes) {
+  std::vector<LabelledScene> databases;
+  std::set<std::string> seen;
+  for (const auto& scene : scenes) {
+    for (const auto& part : scene.parts.empty()
+                                ? std::vector<LabelledScene>{scene}
+                                : scene.parts) {
+      if (seen.insert(part.database_path).second) databases.push_back(part);
+    }
+  }
+  return databases;
+}
+
+// The embedding the model stores, trained on the training databases.
+struct TrainedEmbedding {
+  bool use_vlad = false;
+  bool use_cnn = false;
+  VladEmbedding vlad;
+  CnnEmbeddingModel cnn_model;
+  GcnEmbeddingConfig config;
+};
+
+TrainedEmbedding TrainEmbedding(
+    const std::vector<LabelledScene>& training_scenes,
+    const GcnTrainingPipelineOptions& options) {
+  const std::vector<LabelledScene> databases = SceneDatabases(training_scenes);
+  TrainedEmbedding trained;
+  trained.use_vlad = options.embedding != "onnx";
+  trained.use_cnn = options.embedding != "vlad";
+  if (trained.use_vlad) {
+    std::vector<std::string> database_paths;
+    for (const auto& part : databases) {
+      database_paths.push_back(part.database_path);
+    }
+    LOG(INFO) << "training the VLAD embedding on " << database_paths.size()
+              << " databases";
+    trained.vlad = TrainVladEmbedding(database_paths, options.vlad);
+  }
+  if (trained.use_cnn) {
+    // Raw descriptors of every training database (cached, so embedding the
+    // scenes afterwards reuses them), then the PCA on them.
+    const CnnNetwork network(options.cnn);
+    std::vector<FloatMatrix> collections;
+    for (const auto& part : databases) {
+      LOG(INFO) << "CNN descriptors of " << part.name;
+      std::vector<image_t> image_ids;
+      collections.push_back(
+          ComputeDatabaseCnnDescriptors(Database(part.database_path),
+                                        network,
+                                        options.images.ImagePath(part),
+                                        options.images.CnnCachePath(part),
+                                        &image_ids));
+    }
+    trained.cnn_model = TrainCnnEmbeddingModel(network, collections);
+    const CnnEmbeddingModel& cnn = trained.cnn_model;
+    LOG(INFO) << "CNN embedding " << cnn.network_name << " (checksum "
+              << FormatChecksum(cnn.network_checksum)
+              << "): " << cnn.descriptor_dim << " -> " << cnn.OutputDim()
+              << "-D";
+  }
+  trained.config =
+      MakeEmbeddingConfig(trained.use_vlad ? &trained.vlad : nullptr,
+                          trained.use_cnn ? &trained.cnn_model : nullptr);
+  return trained;
+}
+
+// The scenes embedded with the model's embedding and labelled.
+std::vector<GcnTrainingScene> MakeTrainingScenes(
+    const std::vector<LabelledScene>& scenes,
+    const ModelEmbedder& embedder,
+    const GcnTrainingPipelineOptions& options) {
+  std::vector<GcnTrainingScene> made;
+  for (const auto& scene : scenes) {
+    made.push_back(
+        MakeTrainingScene(scene, embedder, options.images, options.labels));
+    LOG(INFO) << "scene " << scene.name << ": " << made.back().embeddings.rows()
+              << " images, " << made.back().positive_pairs.size()
+              << " matchable pairs";
+  }
+  return made;
+}
+
+// The decision threshold stored in the model: options.threshold, or when
+// negative the one maximising F on held-out data when there is some (on
+// the training scenes the network's scores are optimistic).
+float ChooseThreshold(const GcnModel& model,
+                      const std::vector<GcnTrainingScene>& train,
+                      const std::vector<GcnTrainingScene>& validation,
+                      const GcnTrainingPipelineOptions& options) {
+  if (options.threshold >= 0) return static_cast<float>(options.threshold);
+  const std::vector<GcnTrainingScene>& selection =
+      validation.empty() ? train : validation;
+  const float threshold =
+      SelectGcnThreshold(model, selection, options.training.num_threads);
+  LOG(INFO) << "decision threshold " << std::to_string(threshold)
+            << " (max mean F on the "
+            << (validation.empty() ? "training" : "validation") << " scenes)";
+  return threshold;
+}
+
+std::string PipelineNotes(const std::vector<LabelledScene>& training_scenes,
+                          const std::vector<LabelledScene>& validation_scenes,
+                          const TrainedEmbedding& embedding,
+                          const GcnTrainingPipelineOptions& options,
+                          float threshold,
+                          uint32_t seed) {
+  std::ostringstream notes;
+  notes << "trained on";
+  for (const auto& scene : training_scenes) notes << " " << scene.name;
+  if (!validation_scenes.empty()) {
+    notes << "; validated on";
+    for (const auto& scene : validation_scenes) notes << " " << scene.name;
+  }
+  if (embedding.use_vlad) {
+    notes << "; VLAD " << embedding.vlad.NumWords() << " words -> "
+          << embedding.vlad.OutputDim() << "-D";
+  }
+  if (embedding.use_cnn) {
+    const CnnEmbeddingModel& cnn = embedding.cnn_model;
+    notes << "; CNN " << cnn.network_name << " (checksum "
+          << FormatChecksum(cnn.network_checksum) << ", "
+          << cnn.options.max_image_size << " px, GeM p " << cnn.options.gem_p
+          << (cnn.options.center ? ", centred" : "") << ") -> "
+          << cnn.OutputDim() << "-D";
+  }
+  notes << "; tau_MO " << options.labels.min_overlap << ", tau_CT "
+        << options.labels.min_common_track_ratio << "; threshold " << threshold
+        << "; seed " << seed;
+  return notes.str();
+}
+
+}  // namespace
+
 GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
                        const std::vector<LabelledScene>& validation_scenes,
                        const GcnTrainingPipelineOptions& options) {
   options.Check();
-  // Each database once, in order, whether a scene or a collection's part.
-  std::vector<std::string> database_paths;
-  std::set<std::string> seen;
-  for (const auto& scene : training_scenes) {
-    for (const auto& part : scene.parts.empty()
-                                ? std::vector<LabelledScene>{scene}
-                                : scene.parts) {
-      if (seen.insert(part.database_path).second) {
-        database_paths.push_back(part.database_path);
-      }
-    }
-  }
-  const bool use_vlad = options.embedding != "onnx";
-  const bool use_cnn = options.embedding != "vlad";
-  VladEmbedding vlad;
-  if (use_vlad) {
-    LOG(INFO) << "training the VLAD embedding on " << database_paths.size()
-              << " databases";
-    vlad = TrainVladEmbedding(database_paths, options.vlad);
-  }
-  CnnEmbeddingModel cnn_model;
-  if (use_cnn) {
-    // Raw descriptors of every training database (cached, so embedding the
-    // scenes below reuses them), then the PCA on them.
-    const CnnNetwork network(options.cnn);
-    std::vector<FloatMatrix> collections;
-    std::set<std::string> embedded;
-    for (const auto& scene : training_scenes) {
-      for (const auto& part : scene.parts.empty()
-                                  ? std::vector<LabelledScene>{scene}
-                                  : scene.parts) {
-        if (!embedded.insert(part.database_path).second) continue;
-        LOG(INFO) << "CNN descriptors of " << part.name;
-        std::vector<image_t> image_ids;
-        collections.push_back(
-            ComputeDatabaseCnnDescriptors(Database(part.database_path),
-                                          network,
-                                          options.images.ImagePath(part),
-                                          options.images.CnnCachePath(part),
-                                          &image_ids));
-      }
-    }
-    cnn_model = TrainCnnEmbeddingModel(network, collections);
-    LOG(INFO) << "CNN embedding " << cnn_model.network_name << " (checksum "
-              << FormatChecksum(cnn_model.network_checksum)
-              << "): " << cnn_model.descriptor_dim << " -> "
-              << cnn_model.OutputDim() << "-D";
-  }
-  const GcnEmbeddingConfig embedding_config = MakeEmbeddingConfig(
-      use_vlad ? &vlad : nullptr, use_cnn ? &cnn_model : nullptr);
+  const TrainedEmbedding embedding = TrainEmbedding(training_scenes, options);
   ModelEmbeddingOptions embedder_options;
   embedder_options.onnx_path = options.cnn.onnx_path;
   embedder_options.onnx_flag = "--GcnTraining.onnx_path";
@@ -337,22 +410,11 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   embedder_options.num_threads = options.training.num_threads;
   embedder_options.progress_every = options.cnn.progress_every;
   embedder_options.use_vlad_cache = false;
-  const ModelEmbedder embedder(embedding_config, embedder_options);
-
-  auto make_scenes = [&](const std::vector<LabelledScene>& scenes) {
-    std::vector<GcnTrainingScene> made;
-    for (const auto& scene : scenes) {
-      made.push_back(
-          MakeTrainingScene(scene, embedder, options.images, options.labels));
-      LOG(INFO) << "scene " << scene.name << ": "
-                << made.back().embeddings.rows() << " images, "
-                << made.back().positive_pairs.size() << " matchable pairs";
-    }
-    return made;
-  };
-  const std::vector<GcnTrainingScene> train = make_scenes(training_scenes);
+  const ModelEmbedder embedder(embedding.config, embedder_options);
+  const std::vector<GcnTrainingScene> train =
+      MakeTrainingScenes(training_scenes, embedder, options);
   const std::vector<GcnTrainingScene> validation =
-      make_scenes(validation_scenes);
+      MakeTrainingScenes(validation_scenes, embedder, options);
 
   GcnTrainingOptions training = options.training;
   // A fixed threshold is also the one the epoch statistics use.
@@ -363,250 +425,15 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   training.tau_ct = static_cast<float>(options.labels.min_common_track_ratio);
   GcnTrainer trainer(training);
   GcnModel model = trainer.Train(train, validation);
-  model.embedding = embedding_config;
-  if (options.threshold >= 0) {
-    model.info.threshold = static_cast<float>(options.threshold);
-  } else {
-    // Chosen on held-out data when there is some: on the training scenes
-    // the network's scores are optimistic.
-    const std::vector<GcnTrainingScene>& selection =
-        validation.empty() ? train : validation;
-    model.info.threshold =
-        SelectGcnThreshold(model, selection, options.training.num_threads);
-    LOG(INFO) << "decision threshold " << std::to_string(model.info.threshold)
-              << " (max mean F on the "
-              << (validation.empty() ? "training" : "validation") << " scenes)";
-  }
-  std::ostringstream notes;
-  notes << "trained on";
-  for (const auto& scene : training_scenes) notes << " " << scene.name;
-  if (!validation_scenes.empty()) {
-    notes << "; validated on";
-    for (const auto& scene : validation_scenes) notes << " " << scene.name;
-  }
-  if (use_vlad) {
-    notes << "; VLAD " << vlad.NumWords() << " words -> " << vlad.OutputDim()
-          << "-D";
-  }
-  if (use_cnn) {
-    notes << "; CNN " << cnn_model.network_name << " (checksum "
-          << FormatChecksum(cnn_model.network_checksum) << ", "
-          << cnn_model.options.max_image_size << " px, GeM p "
-          << cnn_model.options.gem_p
-          << (cnn_model.options.center ? ", centred" : "") << ") -> "
-          << cnn_model.OutputDim() << "-D";
-  }
-  notes << "; tau_MO " << options.labels.min_overlap << ", tau_CT "
-        << options.labels.min_common_track_ratio << "; threshold "
-        << model.info.threshold << "; seed " << training.seed;
-  model.info.notes = notes.str();
+  model.embedding = embedding.config;
+  model.info.threshold = ChooseThreshold(model, train, validation, options);
+  model.info.notes = PipelineNotes(training_scenes,
+                                   validation_scenes,
+                                   embedding,
+                                   options,
+                                   model.info.threshold,
+                                   training.seed);
   return model;
-}
-
-PrecisionRecall PairSetScores::Scores() const {
-  return ComputePrecisionRecall(num_true_positives, num_pairs, num_positives);
-}
-
-double PairSetScores::Precision() const { return Scores().precision; }
-
-double PairSetScores::Recall() const { return Scores().recall; }
-
-double PairSetScores::F() const { return Scores().f_measure; }
-
-PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
-                           const GcnTrainingScene& scene) {
-  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
-  const std::unordered_set<uint64_t> unrelated =
-      PairKeys(scene.unrelated_pairs);
-  std::unordered_set<uint64_t> selected;
-  for (const auto& [i, j] : pairs) {
-    if (i != j) selected.insert(PairKey(i, j));
-  }
-  PairSetScores scores;
-  scores.num_pairs = selected.size();
-  scores.num_positives = positives.size();
-  for (const uint64_t key : selected) {
-    scores.num_true_positives += positives.count(key);
-    scores.num_unrelated += unrelated.count(key);
-  }
-  if (!scene.part_of_row.empty()) {
-    for (const auto& [i, j] : pairs) {
-      // Each distinct pair once: its key leaves the set when counted.
-      if (i != j && scene.part_of_row[i] != scene.part_of_row[j] &&
-          selected.erase(PairKey(i, j)) > 0) {
-        ++scores.num_cross_scene;
-      }
-    }
-  }
-  return scores;
-}
-
-std::vector<std::pair<int, int>> MostSimilarPairs(
-    const EmbeddingMatrix& embeddings, size_t num_pairs) {
-  const int n = static_cast<int>(embeddings.rows());
-  const Eigen::MatrixXf similarity = embeddings * embeddings.transpose();
-  std::vector<std::pair<int, int>> pairs;
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) pairs.emplace_back(i, j);
-  }
-  num_pairs = std::min(num_pairs, pairs.size());
-  std::partial_sort(pairs.begin(),
-                    pairs.begin() + num_pairs,
-                    pairs.end(),
-                    [&](const auto& a, const auto& b) {
-                      const float sa = similarity(a.first, a.second);
-                      const float sb = similarity(b.first, b.second);
-                      return sa != sb ? sa > sb : a < b;
-                    });
-  pairs.resize(num_pairs);
-  return pairs;
-}
-
-std::vector<std::pair<int, int>> ShortestPrefixWithTruePositives(
-    std::vector<std::pair<int, int>> ranked,
-    const GcnTrainingScene& scene,
-    size_t num_true_positives) {
-  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
-  size_t prefix = 0;
-  for (size_t found = 0; prefix < ranked.size() && found < num_true_positives;
-       ++prefix) {
-    found +=
-        positives.count(PairKey(ranked[prefix].first, ranked[prefix].second));
-  }
-  ranked.resize(prefix);
-  return ranked;
-}
-
-double BestPrecisionAtRecall(const std::vector<std::pair<int, int>>& ranked,
-                             const GcnTrainingScene& scene,
-                             double min_recall) {
-  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
-  if (positives.empty()) return -1;
-  std::unordered_set<uint64_t> seen;
-  size_t num_true_positives = 0;
-  double best = -1;
-  for (const auto& [i, j] : ranked) {
-    const uint64_t key = PairKey(i, j);
-    if (i == j || !seen.insert(key).second) continue;
-    num_true_positives += positives.count(key);
-    const double recall =
-        static_cast<double>(num_true_positives) / positives.size();
-    if (recall >= min_recall) {
-      best =
-          std::max(best, static_cast<double>(num_true_positives) / seen.size());
-    }
-  }
-  return best;
-}
-
-std::vector<std::pair<int, int>> TopKPairs(const KnnGraph& graph, int k) {
-  const int n = graph.NumImages();
-  k = std::min(k, graph.K());
-  if (n < 2 || k <= 0) return {};
-  // Rows are sorted by similarity: the top-k graph is the first k columns.
-  KnnGraph top_k;
-  top_k.indices = graph.indices.leftCols(k);
-  top_k.similarities = graph.similarities.leftCols(k);
-  // KnnPairGenerator's selection, with row indices as image ids.
-  std::vector<image_t> rows(n);
-  for (int i = 0; i < n; ++i) rows[i] = static_cast<image_t>(i);
-  std::vector<std::pair<int, int>> pairs;
-  for (const auto& [i, j] : KnnGraphToPairs(top_k, rows)) {
-    pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
-  }
-  return pairs;
-}
-
-std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
-                                           int k,
-                                           int num_threads) {
-  const int n = static_cast<int>(embeddings.rows());
-  if (n < 2 || k <= 0) return {};
-  KnnOptions knn_options;
-  knn_options.k = std::min(k, n - 1);
-  knn_options.num_threads = num_threads;
-  return TopKPairs(ComputeExactKnn(embeddings, knn_options), k);
-}
-
-std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
-                                             const GcnTrainingScene& scene,
-                                             int num_threads) {
-  GcnPairingOptions options = GcnPairingOptionsFromModel(model);
-  options.threshold = 0;
-  options.min_pairs_per_image = 0;
-  options.num_threads = num_threads;
-  std::vector<image_t> ids(scene.embeddings.rows());
-  for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<image_t>(i + 1);
-  GcnPairGenerator generator(options, ids, scene.embeddings, model);
-  std::vector<ScoredRowPair> candidates;
-  for (const auto& pair : generator.ScoredPairs()) {
-    candidates.push_back({static_cast<int>(pair.image_id1) - 1,
-                          static_cast<int>(pair.image_id2) - 1,
-                          pair.score});
-  }
-  return candidates;
-}
-
-std::vector<uint8_t> MatchableFlags(
-    const std::vector<ScoredRowPair>& candidates,
-    const GcnTrainingScene& scene) {
-  const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
-  std::vector<uint8_t> flags;
-  flags.reserve(candidates.size());
-  for (const auto& candidate : candidates) {
-    flags.push_back(positives.count(PairKey(candidate.row1, candidate.row2)));
-  }
-  return flags;
-}
-
-std::vector<std::pair<int, int>> PairsAtThreshold(
-    const std::vector<ScoredRowPair>& candidates, float threshold) {
-  std::vector<std::pair<int, int>> pairs;
-  for (const auto& candidate : candidates) {
-    if (candidate.score >= threshold) {
-      pairs.emplace_back(candidate.row1, candidate.row2);
-    }
-  }
-  return pairs;
-}
-
-float SelectGcnThreshold(const GcnModel& model,
-                         const std::vector<GcnTrainingScene>& scenes,
-                         int num_threads) {
-  if (scenes.empty()) return model.info.threshold;
-  std::vector<std::vector<ScoredRowPair>> candidates;
-  for (const auto& scene : scenes) {
-    candidates.push_back(GcnCandidatePairs(model, scene, num_threads));
-  }
-  float best_threshold = model.info.threshold;
-  double best_f = -1;
-  // Steps of 0.05, refined towards both ends: a model's scores on an
-  // unfamiliar collection can crowd near 0 or 1.
-  std::vector<float> grid = {0.01f, 0.02f};
-  for (int step = 1; step <= 19; ++step) grid.push_back(0.05f * step);
-  for (float threshold : {0.97f, 0.98f, 0.99f, 0.995f, 0.999f}) {
-    grid.push_back(threshold);
-  }
-  for (const float threshold : grid) {
-    double sum_f = 0;
-    for (size_t s = 0; s < scenes.size(); ++s) {
-      sum_f +=
-          ScorePairSet(PairsAtThreshold(candidates[s], threshold), scenes[s])
-              .F();
-    }
-    const double mean_f = sum_f / scenes.size();
-    if (mean_f >= best_f) {
-      best_f = mean_f;
-      best_threshold = threshold;
-    }
-  }
-  return best_threshold;
-}
-
-std::vector<std::pair<int, int>> GcnRetrievedPairs(
-    const GcnModel& model, const GcnTrainingScene& scene, int num_threads) {
-  return PairsAtThreshold(GcnCandidatePairs(model, scene, num_threads),
-                          model.info.threshold);
 }
 
 }  // namespace colmap_gcn

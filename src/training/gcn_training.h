@@ -6,10 +6,11 @@
 #include "controllers/gcn_model_pairing.h"
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
-#include "gcn/gcn_trainer.h"
 #include "math/precision_recall.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/vlad.h"
+#include "training/gcn_trainer.h"
+#include "training/pair_set_scoring.h"
 
 namespace colmap_gcn {
 
@@ -109,87 +110,5 @@ GcnTrainingScene MakeTrainingScene(const LabelledScene& scene,
 GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
                        const std::vector<LabelledScene>& validation_scenes,
                        const GcnTrainingPipelineOptions& options);
-
-// Retrieval quality of a pair set against a scene's labelled pairs.
-struct PairSetScores {
-  size_t num_pairs = 0;
-  size_t num_true_positives = 0;
-  size_t num_positives = 0;  // matchable pairs in the scene
-  // Selected pairs among the scene's unrelated_pairs (wrong pairs).
-  size_t num_unrelated = 0;
-  // Selected pairs across the parts of a collection (unrelated photos).
-  size_t num_cross_scene = 0;
-  PrecisionRecall Scores() const;
-  double Precision() const;
-  double Recall() const;
-  double F() const;
-};
-
-PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
-                           const GcnTrainingScene& scene);
-
-// The fixed-k retrieval baseline at an equal number of pairs: the
-// `num_pairs` most similar unordered pairs (ties by index).
-std::vector<std::pair<int, int>> MostSimilarPairs(
-    const EmbeddingMatrix& embeddings, size_t num_pairs);
-
-// The shortest prefix of `ranked` holding num_true_positives matchable pairs
-// of the scene (all of `ranked` if it holds fewer): a ranking's cost, in
-// pairs, of reaching a given recall.
-std::vector<std::pair<int, int>> ShortestPrefixWithTruePositives(
-    std::vector<std::pair<int, int>> ranked,
-    const GcnTrainingScene& scene,
-    size_t num_true_positives);
-
-// The highest precision of any prefix of `ranked` (best first; a repeated
-// pair counts at its first place) whose recall over all of the scene's
-// matchable pairs is at least `min_recall`, or -1 if no prefix reaches it.
-// With the labels choosing the cut, this bounds what any threshold on the
-// ranking can reach.
-double BestPrecisionAtRecall(const std::vector<std::pair<int, int>>& ranked,
-                             const GcnTrainingScene& scene,
-                             double min_recall);
-
-// The fixed-k retrieval baseline (paper's "CNN kNN"): the union of every
-// image's k most similar images, as KnnPairGenerator selects them.
-std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
-                                           int k,
-                                           int num_threads);
-// The same from a kNN graph with at least k neighbours per row (its first k
-// columns), so several k share one search.
-std::vector<std::pair<int, int>> TopKPairs(const KnnGraph& graph, int k);
-
-// Every candidate pair of the GCN (1-hop nodes of all QESs, the model's
-// recommended k1, k2, u) with its score, the max over both directions.
-struct ScoredRowPair {
-  int row1 = 0;
-  int row2 = 0;
-  float score = 0.f;
-};
-std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
-                                             const GcnTrainingScene& scene,
-                                             int num_threads);
-
-// 1 for the candidates that are matchable pairs of the scene, else 0 (for
-// AveragePrecision over the candidates).
-std::vector<uint8_t> MatchableFlags(
-    const std::vector<ScoredRowPair>& candidates,
-    const GcnTrainingScene& scene);
-
-// The candidates a threshold keeps (as GcnPairGenerator does).
-std::vector<std::pair<int, int>> PairsAtThreshold(
-    const std::vector<ScoredRowPair>& candidates, float threshold);
-
-// The threshold in {0.01, 0.02, 0.05, 0.10, ..., 0.95, 0.97, 0.98, 0.99,
-// 0.995, 0.999} maximising the mean pair-set F over the scenes (ties: the
-// higher threshold, fewer pairs).
-float SelectGcnThreshold(const GcnModel& model,
-                         const std::vector<GcnTrainingScene>& scenes,
-                         int num_threads);
-
-// The pairs the GCN retrieves for a scene (GcnPairGenerator with the model's
-// recommended settings, threshold only, no min_pairs_per_image fallback).
-std::vector<std::pair<int, int>> GcnRetrievedPairs(
-    const GcnModel& model, const GcnTrainingScene& scene, int num_threads);
 
 }  // namespace colmap_gcn

@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "gcn/gcn_inference.h"
-#include "gcn/gcn_network.h"
 #include "gcn/gcn_test_utils.h"
 #include "test_utils.h"
+#include "training/gcn_network.h"
 #include "util/file.h"
 
 namespace colmap_gcn {

@@ -1,32 +1,13 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-#include <utility>
 #include <vector>
 
 #include "gcn/gcn_model.h"
 #include "gcn/query_enclosing_subgraph.h"
-#include "math/precision_recall.h"
-#include "retrieval/knn.h"
 #include "util/option_check.h"
 
 namespace colmap_gcn {
-
-// One training collection, decoupled from databases: embeddings (rows =
-// images, L2-normalised) and the matchable pairs (unordered row-index pairs;
-// e.g. MO >= tau_MO or CT >= tau_CT). Every other pair is a negative.
-struct GcnTrainingScene {
-  std::string name;
-  EmbeddingMatrix embeddings;
-  std::vector<std::pair<int, int>> positive_pairs;
-  // Labelled pairs whose images share nothing (no surface, no 3D point): a
-  // match between them can only be wrong. Evaluation only; may be empty.
-  std::vector<std::pair<int, int>> unrelated_pairs;
-  // A collection of scenes ("a+b"): the part each row comes from, so pairs
-  // across parts can be counted. Empty for a single scene.
-  std::vector<int> part_of_row;
-};
 
 // How training starts (GcnTrainingOptions::initialization).
 enum class GcnInitialization { kXavier, kDistancePrior };
@@ -106,61 +87,5 @@ struct GcnTrainingOptions {
   // Throws OptionError naming the first invalid field.
   void Check() const;
 };
-
-struct GcnClassificationStats {
-  double loss = 0;  // mean weighted BCE per 1-hop node
-  int64_t num_nodes = 0;
-  int64_t true_positives = 0;
-  int64_t false_positives = 0;
-  int64_t false_negatives = 0;
-  // Average precision of each query's 1-hop nodes ranked by logit, summed
-  // over the queries with at least one matchable node (threshold free).
-  double average_precision_sum = 0;
-  int64_t num_ranked_queries = 0;
-  PrecisionRecall Scores() const;
-  double Precision() const;
-  double Recall() const;
-  double F() const;
-  double MeanAveragePrecision() const;
-};
-
-struct GcnEpochStats {
-  int epoch = 0;
-  double learning_rate = 0;
-  GcnClassificationStats train;
-  GcnClassificationStats validation;
-  double seconds = 0;
-};
-
-class GcnTrainer {
- public:
-  explicit GcnTrainer(const GcnTrainingOptions& options);
-
-  // Trains on the scenes; validates on validation_scenes, or on a random
-  // validation_fraction of the (scene, query) samples when empty.
-  // Deterministic for a given seed, whatever num_threads.
-  GcnModel Train(const std::vector<GcnTrainingScene>& scenes,
-                 const std::vector<GcnTrainingScene>& validation_scenes = {});
-
-  const std::vector<GcnEpochStats>& History() const { return history_; }
-
- private:
-  GcnTrainingOptions options_;
-  std::vector<GcnEpochStats> history_;
-};
-
-// Average precision of items ranked by score (highest first, ties in item
-// order): the mean over relevant items of the precision at their rank; 0
-// without relevant items. scores and relevant have the same size.
-double AveragePrecision(const std::vector<float>& scores,
-                        const std::vector<uint8_t>& relevant);
-
-// Classification statistics of a model on the 1-hop nodes of every query of
-// the scenes (QES from `qes`), e.g. for held-out evaluation.
-GcnClassificationStats EvaluateGcn(const GcnModel& model,
-                                   const std::vector<GcnTrainingScene>& scenes,
-                                   const QesOptions& qes,
-                                   float threshold,
-                                   int num_threads);
 
 }  // namespace colmap_gcn

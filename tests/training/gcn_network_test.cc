@@ -1,4 +1,4 @@
-#include "gcn/gcn_network.h"
+#include "training/gcn_network.h"
 
 #include <cmath>
 #include <random>

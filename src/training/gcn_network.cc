@@ -1,4 +1,4 @@
-#include "gcn/gcn_network.h"
+#include "training/gcn_network.h"
 
 #include <algorithm>
 #include <cmath>
@@ -136,73 +136,112 @@ ColVector<T> GcnForwardReference(const GcnParameters<T>& params,
   return logits;
 }
 
+namespace {
+
+// What the backward pass needs of the forward pass: per GCN layer the input
+// [H || G H] and the pre-activations (the last layer on the 1-hop rows
+// only), the FC1 output before and after the PReLU, and the logits.
 template <typename T>
-T GcnLossAndGradient(const GcnParameters<T>& params,
-                     const GcnGraph<T>& graph,
-                     T positive_weight,
-                     GcnParameters<T>* gradient,
-                     ColVector<T>* logits_out) {
+struct ForwardCache {
+  std::vector<RowMatrix<T>> cats;
+  std::vector<RowMatrix<T>> pre;
+  std::vector<RowMatrix<T>> hs;
+  RowMatrix<T> u;
+  RowMatrix<T> v;
+  ColVector<T> logits;
+};
+
+template <typename T>
+void ForwardWithCache(const GcnParameters<T>& params,
+                      const GcnGraph<T>& graph,
+                      ForwardCache<T>* cache) {
   const GcnShape& shape = params.Shape();
   const int num_layers = shape.NumGcnLayers();
   const int n = static_cast<int>(graph.features.rows());
   const int n1 = graph.num_one_hop;
-  THROW_CHECK(graph.features.cols() == shape.input_dim);
-  THROW_CHECK(graph.aggregation.num_nodes == n);
-  THROW_CHECK(n1 <= n);
-  const bool with_labels = !graph.labels.empty() || gradient != nullptr;
-  if (with_labels) THROW_CHECK(static_cast<int>(graph.labels.size()) == n1);
-
-  // Forward, caching [H || G H] and the pre-activations of every layer.
-  std::vector<RowMatrix<T>> cats(num_layers);
-  std::vector<RowMatrix<T>> pre(num_layers);
+  cache->cats.resize(num_layers);
+  cache->pre.resize(num_layers);
+  cache->hs.resize(num_layers);
   const RowMatrix<T>* h = &graph.features;
-  std::vector<RowMatrix<T>> hs(num_layers);
   for (int l = 0; l < num_layers; ++l) {
     const int in = shape.LayerInputDim(l);
     const int out = shape.gcn_dims[l];
     const int rows = (l == num_layers - 1) ? n1 : n;
-    RowMatrix<T>& cat = cats[l];
+    RowMatrix<T>& cat = cache->cats[l];
     cat.resize(rows, 2 * in);
     cat.leftCols(in) = h->topRows(rows);
     Aggregate(
         graph.aggregation, h->data(), in, in, rows, cat.data() + in, 2 * in);
-    RowMatrix<T>& z = pre[l];
+    RowMatrix<T>& z = cache->pre[l];
     z.resize(rows, out);
     for (int i = 0; i < rows; ++i) z.row(i) = params.GcnBias(l).transpose();
     Gemm(ViewOf(cat), ViewOf(params.GcnWeight(l)), T(1), z.data(), out);
-    hs[l] = z.cwiseMax(T(0));
-    h = &hs[l];
+    cache->hs[l] = z.cwiseMax(T(0));
+    h = &cache->hs[l];
   }
-  const RowMatrix<T>& h_last = hs[num_layers - 1];  // n1 x d_L
-  RowMatrix<T> u(n1, shape.fc_dim);
+  const RowMatrix<T>& h_last = cache->hs[num_layers - 1];  // n1 x d_L
+  RowMatrix<T>& u = cache->u;
+  u.resize(n1, shape.fc_dim);
   for (int i = 0; i < n1; ++i) u.row(i) = params.Fc1Bias().transpose();
   Gemm(
       ViewOf(h_last), ViewOf(params.Fc1Weight()), T(1), u.data(), shape.fc_dim);
-  RowMatrix<T> v(n1, shape.fc_dim);
+  RowMatrix<T>& v = cache->v;
+  v.resize(n1, shape.fc_dim);
   for (int i = 0; i < n1; ++i) {
     for (int j = 0; j < shape.fc_dim; ++j) {
       v(i, j) = u(i, j) > 0 ? u(i, j) : params.Prelu()(j) * u(i, j);
     }
   }
-  ColVector<T> logits = v * params.Fc2Weight();
-  logits.array() += params.Fc2Bias();
-  if (logits_out != nullptr) *logits_out = logits;
-  if (!with_labels) return T(0);
+  cache->logits = v * params.Fc2Weight();
+  cache->logits.array() += params.Fc2Bias();
+}
 
-  // Loss and dL/dz.
-  T loss = 0;
-  ColVector<T> dz(n1);
-  for (int i = 0; i < n1; ++i) {
-    const T y = graph.labels[i] ? T(1) : T(0);
-    const T w = graph.labels[i] ? positive_weight : T(1);
-    loss += w * (Softplus(logits(i)) - y * logits(i));
-    dz(i) = w * (Sigmoid(logits(i)) - y);
+// dH_prev of GCN layer l from the gradient of its pre-activations:
+// dcat[:, :in] (top rows) + G[0:rows,:]^T dcat[:, in:].
+template <typename T>
+RowMatrix<T> LayerInputGradient(const GcnParameters<T>& params,
+                                const AggregationMatrix& g,
+                                int l,
+                                int n,
+                                const RowMatrix<T>& dpre) {
+  const int in = params.Shape().LayerInputDim(l);
+  const int rows = static_cast<int>(dpre.rows());
+  RowMatrix<T> dcat(rows, 2 * in);
+  Gemm(ViewOf(dpre),
+       ViewOf(params.GcnWeight(l)).Transposed(),
+       T(0),
+       dcat.data(),
+       2 * in);
+  RowMatrix<T> dh_prev = RowMatrix<T>::Zero(n, in);
+  dh_prev.topRows(rows) = dcat.leftCols(in);
+  for (int i = 0; i < rows; ++i) {
+    const T* src = dcat.data() + i * 2 * in + in;
+    for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+      const T w = static_cast<T>(g.values[e]);
+      T* dst = dh_prev.data() + static_cast<long>(g.columns[e]) * in;
+      for (int j = 0; j < in; ++j) dst[j] += w * src[j];
+    }
   }
-  if (gradient == nullptr) return loss;
+  return dh_prev;
+}
+
+// Adds d(loss)/d(params) to *gradient given dz = d(loss)/d(logits).
+template <typename T>
+void Backward(const GcnParameters<T>& params,
+              const GcnGraph<T>& graph,
+              const ForwardCache<T>& cache,
+              const ColVector<T>& dz,
+              GcnParameters<T>* gradient) {
+  const GcnShape& shape = params.Shape();
+  const int num_layers = shape.NumGcnLayers();
+  const int n = static_cast<int>(graph.features.rows());
+  const int n1 = graph.num_one_hop;
+  const RowMatrix<T>& u = cache.u;
+  const RowMatrix<T>& h_last = cache.hs[num_layers - 1];
   GcnParameters<T>& grad = *gradient;
 
   // FC2.
-  grad.Fc2Weight().noalias() += v.transpose() * dz;
+  grad.Fc2Weight().noalias() += cache.v.transpose() * dz;
   grad.Fc2Bias() += dz.sum();
   RowMatrix<T> du = dz * params.Fc2Weight().transpose();  // dV, n1 x fc
   // PReLU.
@@ -228,34 +267,50 @@ T GcnLossAndGradient(const GcnParameters<T>& params,
 
   // GCN layers, last to first.
   for (int l = num_layers - 1; l >= 0; --l) {
-    const int in = shape.LayerInputDim(l);
     const int out = shape.gcn_dims[l];
-    const int rows = static_cast<int>(pre[l].rows());
-    RowMatrix<T> dpre = (pre[l].array() > T(0)).select(dh, T(0));
+    RowMatrix<T> dpre = (cache.pre[l].array() > T(0)).select(dh, T(0));
     auto gw = grad.GcnWeight(l);
-    Gemm(ViewOf(cats[l]).Transposed(), ViewOf(dpre), T(1), gw.data(), out);
+    Gemm(
+        ViewOf(cache.cats[l]).Transposed(), ViewOf(dpre), T(1), gw.data(), out);
     grad.GcnBias(l) += dpre.colwise().sum().transpose();
     if (l == 0) break;
-    RowMatrix<T> dcat(rows, 2 * in);
-    Gemm(ViewOf(dpre),
-         ViewOf(params.GcnWeight(l)).Transposed(),
-         T(0),
-         dcat.data(),
-         2 * in);
-    // dH_prev = dcat[:, :in] (top rows) + G[0:rows,:]^T dcat[:, in:].
-    RowMatrix<T> dh_prev = RowMatrix<T>::Zero(n, in);
-    dh_prev.topRows(rows) = dcat.leftCols(in);
-    const AggregationMatrix& g = graph.aggregation;
-    for (int i = 0; i < rows; ++i) {
-      const T* src = dcat.data() + i * 2 * in + in;
-      for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
-        const T w = static_cast<T>(g.values[e]);
-        T* dst = dh_prev.data() + static_cast<long>(g.columns[e]) * in;
-        for (int j = 0; j < in; ++j) dst[j] += w * src[j];
-      }
-    }
-    dh = std::move(dh_prev);
+    dh = LayerInputGradient(params, graph.aggregation, l, n, dpre);
   }
+}
+
+}  // namespace
+
+template <typename T>
+T GcnLossAndGradient(const GcnParameters<T>& params,
+                     const GcnGraph<T>& graph,
+                     T positive_weight,
+                     GcnParameters<T>* gradient,
+                     ColVector<T>* logits_out) {
+  const GcnShape& shape = params.Shape();
+  const int n = static_cast<int>(graph.features.rows());
+  const int n1 = graph.num_one_hop;
+  THROW_CHECK(graph.features.cols() == shape.input_dim);
+  THROW_CHECK(graph.aggregation.num_nodes == n);
+  THROW_CHECK(n1 <= n);
+  const bool with_labels = !graph.labels.empty() || gradient != nullptr;
+  if (with_labels) THROW_CHECK(static_cast<int>(graph.labels.size()) == n1);
+
+  ForwardCache<T> cache;
+  ForwardWithCache(params, graph, &cache);
+  const ColVector<T>& logits = cache.logits;
+  if (logits_out != nullptr) *logits_out = logits;
+  if (!with_labels) return T(0);
+
+  // Loss and dL/dz.
+  T loss = 0;
+  ColVector<T> dz(n1);
+  for (int i = 0; i < n1; ++i) {
+    const T y = graph.labels[i] ? T(1) : T(0);
+    const T w = graph.labels[i] ? positive_weight : T(1);
+    loss += w * (Softplus(logits(i)) - y * logits(i));
+    dz(i) = w * (Sigmoid(logits(i)) - y);
+  }
+  if (gradient != nullptr) Backward(params, graph, cache, dz, gradient);
   return loss;
 }
 
