@@ -303,6 +303,61 @@ PairMatchingSummary MatchImagePairs(const ColmapRunner& colmap,
   return summary;
 }
 
+namespace {
+
+// A generator that does not use verification: all its pairs at once.
+PairMatchingSummary MatchAllPairs(const ColmapRunner& colmap,
+                                  const std::string& database_path,
+                                  PairGenerator* generator,
+                                  const PairMatchingOptions& options,
+                                  std::vector<ImagePair>* pairs) {
+  std::vector<ImagePair> all_pairs = generator->AllPairs();
+  LOG(INFO) << all_pairs.size() << " pairs chosen";
+  PairMatchingOptions scored = options;
+  scored.scores = generator->Scores();
+  const PairMatchingSummary summary =
+      MatchImagePairs(colmap, database_path, all_pairs, scored);
+  if (pairs != nullptr) *pairs = std::move(all_pairs);
+  return summary;
+}
+
+// How a round's pairs verified, for Observe(); a pair COLMAP kept no row
+// for stays at PairVerification's defaults (unverified).
+std::vector<PairVerification> Verifications(const std::vector<ImagePair>& pairs,
+                                            const GeometryMap& geometries) {
+  std::vector<PairVerification> verifications;
+  verifications.reserve(pairs.size());
+  for (const ImagePair& pair : pairs) {
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    const auto it = geometries.find(ImagePairToPairId(pair.first, pair.second));
+    if (it != geometries.end()) {
+      verification.config = it->second.config;
+      verification.num_inliers = it->second.num_inliers;
+    }
+    verifications.push_back(verification);
+  }
+  return verifications;
+}
+
+size_t CountVerifiedPairs(const std::vector<ImagePair>& pairs,
+                          const GeometryMap& geometries,
+                          int min_num_inliers) {
+  size_t num_verified = 0;
+  for (const ImagePair& pair : pairs) {
+    const auto it = geometries.find(ImagePairToPairId(pair.first, pair.second));
+    if (it != geometries.end() &&
+        IsVerifiedTwoViewGeometry(
+            it->second.config, it->second.num_inliers, min_num_inliers)) {
+      ++num_verified;
+    }
+  }
+  return num_verified;
+}
+
+}  // namespace
+
 PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
                                        const std::string& database_path,
                                        PairGenerator* generator,
@@ -311,14 +366,7 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
   THROW_CHECK(generator != nullptr);
   THROW_CHECK(options.scores.empty());
   if (!generator->UsesVerification()) {
-    std::vector<ImagePair> all_pairs = generator->AllPairs();
-    LOG(INFO) << all_pairs.size() << " pairs chosen";
-    PairMatchingOptions scored = options;
-    scored.scores = generator->Scores();
-    const PairMatchingSummary summary =
-        MatchImagePairs(colmap, database_path, all_pairs, scored);
-    if (pairs != nullptr) *pairs = std::move(all_pairs);
-    return summary;
+    return MatchAllPairs(colmap, database_path, generator, options, pairs);
   }
   options.Check();
   const ScopedFileLock lock(
@@ -326,7 +374,6 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
   PairMatchingSummary summary;
   summary.pairs_path = options.pairs_path.empty() ? database_path + ".pairs.txt"
                                                   : options.pairs_path;
-  const int min_num_inliers = options.min_num_inliers;
   std::vector<DatabaseImage> images;
   {
     const Database database(database_path);
@@ -385,20 +432,8 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
                                       /*stop_between_blocks=*/false);
       summary.matching_seconds += timer.ElapsedSeconds();
     }
-    std::vector<PairVerification> verifications;
-    verifications.reserve(round_pairs.size());
-    for (const ImagePair& pair : round_pairs) {
-      PairVerification verification;
-      verification.image_id1 = pair.first;
-      verification.image_id2 = pair.second;
-      const auto it =
-          geometries.find(ImagePairToPairId(pair.first, pair.second));
-      if (it != geometries.end()) {
-        verification.config = it->second.config;
-        verification.num_inliers = it->second.num_inliers;
-      }
-      verifications.push_back(verification);
-    }
+    const std::vector<PairVerification> verifications =
+        Verifications(round_pairs, geometries);
     generator_timer.Restart();
     generator->Observe(verifications);
     generator_seconds += generator_timer.ElapsedSeconds();
@@ -410,14 +445,8 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
   }
   summary.generator_seconds = generator_seconds;
   summary.num_attempted_pairs = attempted.size();
-  for (const ImagePair& pair : attempted) {
-    const auto it = geometries.find(ImagePairToPairId(pair.first, pair.second));
-    if (it != geometries.end() &&
-        IsVerifiedTwoViewGeometry(
-            it->second.config, it->second.num_inliers, min_num_inliers)) {
-      ++summary.num_verified_pairs;
-    }
-  }
+  summary.num_verified_pairs =
+      CountVerifiedPairs(attempted, geometries, options.min_num_inliers);
   {
     const CriticalSection critical;
     working_copy.Commit();

@@ -32,6 +32,21 @@ std::vector<std::string> MethodNames() {
 
 }  // namespace
 
+std::vector<std::string> BenchmarkMethodChoices() {
+  std::vector<std::string> choices;
+  for (const std::string& name : MethodNames()) {
+    choices.push_back(MethodSyntax(name));
+  }
+  choices.push_back("oracle");
+  return choices;
+}
+
+std::string BenchmarkMethodsHelp() {
+  return "comma list of " + StringJoin(BenchmarkMethodChoices(), " | ") +
+         " (oracle: the labelled matchable pairs); none: features and labels "
+         "only (for gcn_train)";
+}
+
 std::string BenchmarkMethod::DirName() const {
   return k > 0 ? pairing + "-" + std::to_string(k) : pairing;
 }
@@ -49,13 +64,10 @@ BenchmarkMethod ParseBenchmarkMethod(const std::string& spec) {
   const std::vector<std::string> names = MethodNames();
   if (!method.pairing.empty() && !method.IsOracle() &&
       std::find(names.begin(), names.end(), method.pairing) == names.end()) {
-    std::vector<std::string> choices;
-    for (const std::string& name : names) choices.push_back(MethodSyntax(name));
-    choices.push_back("oracle");
     ThrowError("bad method \"",
                spec,
                "\" in --methods: must be one of ",
-               StringJoin(choices, "|"));
+               StringJoin(BenchmarkMethodChoices(), "|"));
   }
   const bool k_based = !method.IsOracle() && !method.pairing.empty() &&
                        PairGenerators().TakesDepth(method.pairing);

@@ -21,6 +21,12 @@ struct BenchmarkMethod {
   int EffectiveK(size_t num_images) const;
 };
 
+// What --methods accepts, from PairGenerators(): each benchmark method as
+// "<name>" or "<name>:<k>" in the order of the paper's tables, then "oracle".
+std::vector<std::string> BenchmarkMethodChoices();
+// The help text of gcn_benchmark's --methods.
+std::string BenchmarkMethodsHelp();
+
 // Throws Error on an unknown pairing, a malformed spec or a bad k. A known
 // pairing this build cannot create (e.g. gcn without a model) is reported
 // as unavailable by the benchmark.

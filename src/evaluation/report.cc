@@ -179,6 +179,114 @@ void CollectionSection(const SceneResult& scene, std::ostringstream* out) {
        << per_scene.Str() << "\n";
 }
 
+// One scene's per-method tables: retrieval, matching, mapping and, with
+// ground-truth cameras, poses.
+struct SceneTables {
+  Table retrieval{{"method",
+                   "k",
+                   "pairs",
+                   "true pos.",
+                   "precision",
+                   "recall",
+                   "F-measure",
+                   "wrong pairs"}};
+  Table matching{{"method",
+                  "UM/TAM",
+                  "ratio",
+                  "verified wrong",
+                  "pairing (s)",
+                  "matching (s)",
+                  "speedup vs exhaustive"}};
+  Table mapping{{"method",
+                 "images",
+                 "registered",
+                 "models",
+                 "points",
+                 "observations",
+                 "track length",
+                 "reproj. error (px)",
+                 "mapping (s)"}};
+  Table pose{{"method",
+              "aligned",
+              "median rot. (deg)",
+              "median pos. (% extent)",
+              "rot. ok",
+              "pos. ok",
+              "accurate"}};
+};
+
+// One method's rows (a failed or unavailable one: its status in each).
+void AddMethodRows(const SceneResult& scene,
+                   const MethodResult& method,
+                   const MethodResult* exhaustive,
+                   SceneTables* tables) {
+  Table* retrieval = &tables->retrieval;
+  Table* matching = &tables->matching;
+  Table* mapping = &tables->mapping;
+  Table* pose = &tables->pose;
+  const std::string label = MethodLabel(method);
+  if (!method.Ok()) {
+    const std::string status = StatusRow(method);
+    retrieval->Row({label, status});
+    matching->Row({label, status});
+    mapping->Row({label, status});
+    if (scene.has_gt_cameras) pose->Row({label, status});
+    return;
+  }
+  const RetrievalMetrics& r = method.retrieval;
+  retrieval->Row({label,
+                  method.k > 0 ? std::to_string(method.k) : "-",
+                  Count(r.num_pairs),
+                  Count(r.num_true_positives),
+                  Format("%.3f", r.precision),
+                  Format("%.3f", r.recall),
+                  Format("%.3f", r.f_measure),
+                  Count(r.num_wrong_pairs)});
+  std::string speedup = "-";
+  if (exhaustive != nullptr && method.matching_seconds > 0) {
+    speedup =
+        "x" +
+        Format("%.2f", exhaustive->matching_seconds / method.matching_seconds);
+  }
+  matching->Row({label,
+                 Count(method.num_verified) + "/" + Count(method.num_attempted),
+                 Format("%.3f", method.UsefulRatio()),
+                 Count(method.num_verified_wrong),
+                 Format("%.2f", method.pairing_seconds),
+                 Format("%.1f", method.matching_seconds),
+                 speedup});
+  const SfmMetrics& s = method.sfm;
+  mapping->Row({label,
+                Count(s.num_images),
+                Count(s.num_registered),
+                Count(s.num_models),
+                Count(s.num_points3D),
+                Count(s.num_observations),
+                Format("%.3f", s.mean_track_length),
+                Format("%.3f", s.mean_reprojection_error),
+                Format("%.1f", method.mapping_seconds)});
+  if (scene.has_gt_cameras && s.has_pose_errors) {
+    const PoseErrors& p = s.pose_errors;
+    if (!p.aligned) {
+      pose->Row({label,
+                 Count(p.num_evaluated) + "/" + Count(p.num_gt_images),
+                 "-",
+                 "-",
+                 "0%",
+                 "0%",
+                 "0%"});
+    } else {
+      pose->Row({label,
+                 Count(p.num_evaluated) + "/" + Count(p.num_gt_images),
+                 Format("%.2f", p.median_rotation_error_deg),
+                 Format("%.2f", 100 * p.median_position_error),
+                 Format("%.0f%%", 100 * p.fraction_rotation_ok),
+                 Format("%.0f%%", 100 * p.fraction_position_ok),
+                 Format("%.0f%%", 100 * p.fraction_accurate)});
+    }
+  }
+}
+
 void SceneSection(const SceneResult& scene, std::ostringstream* out) {
   *out << "## " << scene.name << "\n\n";
   if (scene.status != "ok") {
@@ -201,109 +309,19 @@ void SceneSection(const SceneResult& scene, std::ostringstream* out) {
             "folder for comparable times._\n\n";
   }
 
-  Table retrieval({"method",
-                   "k",
-                   "pairs",
-                   "true pos.",
-                   "precision",
-                   "recall",
-                   "F-measure",
-                   "wrong pairs"});
-  Table matching({"method",
-                  "UM/TAM",
-                  "ratio",
-                  "verified wrong",
-                  "pairing (s)",
-                  "matching (s)",
-                  "speedup vs exhaustive"});
-  Table mapping({"method",
-                 "images",
-                 "registered",
-                 "models",
-                 "points",
-                 "observations",
-                 "track length",
-                 "reproj. error (px)",
-                 "mapping (s)"});
-  Table pose({"method",
-              "aligned",
-              "median rot. (deg)",
-              "median pos. (% extent)",
-              "rot. ok",
-              "pos. ok",
-              "accurate"});
+  SceneTables tables;
   const MethodResult* exhaustive = FindExhaustive(scene);
   for (const MethodResult& method : scene.methods) {
-    const std::string label = MethodLabel(method);
-    if (!method.Ok()) {
-      const std::string status = StatusRow(method);
-      retrieval.Row({label, status});
-      matching.Row({label, status});
-      mapping.Row({label, status});
-      if (scene.has_gt_cameras) pose.Row({label, status});
-      continue;
-    }
-    const RetrievalMetrics& r = method.retrieval;
-    retrieval.Row({label,
-                   method.k > 0 ? std::to_string(method.k) : "-",
-                   Count(r.num_pairs),
-                   Count(r.num_true_positives),
-                   Format("%.3f", r.precision),
-                   Format("%.3f", r.recall),
-                   Format("%.3f", r.f_measure),
-                   Count(r.num_wrong_pairs)});
-    std::string speedup = "-";
-    if (exhaustive != nullptr && method.matching_seconds > 0) {
-      speedup =
-          "x" + Format("%.2f",
-                       exhaustive->matching_seconds / method.matching_seconds);
-    }
-    matching.Row(
-        {label,
-         Count(method.num_verified) + "/" + Count(method.num_attempted),
-         Format("%.3f", method.UsefulRatio()),
-         Count(method.num_verified_wrong),
-         Format("%.2f", method.pairing_seconds),
-         Format("%.1f", method.matching_seconds),
-         speedup});
-    const SfmMetrics& s = method.sfm;
-    mapping.Row({label,
-                 Count(s.num_images),
-                 Count(s.num_registered),
-                 Count(s.num_models),
-                 Count(s.num_points3D),
-                 Count(s.num_observations),
-                 Format("%.3f", s.mean_track_length),
-                 Format("%.3f", s.mean_reprojection_error),
-                 Format("%.1f", method.mapping_seconds)});
-    if (scene.has_gt_cameras && s.has_pose_errors) {
-      const PoseErrors& p = s.pose_errors;
-      if (!p.aligned) {
-        pose.Row({label,
-                  Count(p.num_evaluated) + "/" + Count(p.num_gt_images),
-                  "-",
-                  "-",
-                  "0%",
-                  "0%",
-                  "0%"});
-      } else {
-        pose.Row({label,
-                  Count(p.num_evaluated) + "/" + Count(p.num_gt_images),
-                  Format("%.2f", p.median_rotation_error_deg),
-                  Format("%.2f", 100 * p.median_position_error),
-                  Format("%.0f%%", 100 * p.fraction_rotation_ok),
-                  Format("%.0f%%", 100 * p.fraction_position_ok),
-                  Format("%.0f%%", 100 * p.fraction_accurate)});
-      }
-    }
+    AddMethodRows(scene, method, exhaustive, &tables);
   }
   *out << "### Matchable image retrieval (Tables 1-2)\n\n"
-       << retrieval.Str() << "\n### Matching (Tables 3, 5)\n\n"
-       << matching.Str() << "\n### Mapping, largest model (Tables 4, 6)\n\n"
-       << mapping.Str();
-  if (!pose.Empty()) {
+       << tables.retrieval.Str() << "\n### Matching (Tables 3, 5)\n\n"
+       << tables.matching.Str()
+       << "\n### Mapping, largest model (Tables 4, 6)\n\n"
+       << tables.mapping.Str();
+  if (!tables.pose.Empty()) {
     *out << "\n### Cameras against ground truth (similarity-aligned)\n\n"
-         << pose.Str();
+         << tables.pose.Str();
   }
   if (scene.is_collection) {
     *out << "\n";

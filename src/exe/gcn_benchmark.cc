@@ -5,6 +5,7 @@
 
 #include "controllers/gcn_matching.h"
 #include "evaluation/benchmark.h"
+#include "evaluation/method.h"
 #include "evaluation/report.h"
 #include "exe/gcn_matcher.h"
 #include "util/error.h"
@@ -52,11 +53,7 @@ int RunGcnBenchmark(int argc, char** argv) {
       &options.datasets,
       "comma list of scene folders (images/ + gt/, or 1DSfM list.txt + "
       "bundle.out) or synth:<family>:<n>[:seed]");
-  manager.AddDefaultOption("methods",
-                           &options.methods,
-                           "comma list: exhaustive, knn:<k>, "
-                           "vocab_tree:<k>, gcn, oracle; none: features "
-                           "and labels only (for gcn_train)");
+  manager.AddDefaultOption("methods", &options.methods, BenchmarkMethodsHelp());
   manager.AddRequiredOption("output_path", &options.output_path);
   manager.AddDefaultOption("Benchmark.tau_mo",
                            &options.labels.min_overlap,

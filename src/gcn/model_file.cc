@@ -195,7 +195,10 @@ std::string SerializeGcnModel(const GcnModel& model) {
   return file.Bytes();
 }
 
-GcnModel DeserializeGcnModel(const std::string& bytes,
+namespace {
+
+// Checks the header, size and checksum; returns the payload's size.
+uint64_t CheckModelFileFrame(const std::string& bytes,
                              const std::string& source) {
   if (!IsLittleEndian())
     ThrowError("GCN model files need a little-endian host");
@@ -241,10 +244,16 @@ GcnModel DeserializeGcnModel(const std::string& bytes,
   if (checksum != Fnv1a64(bytes.data() + kHeaderSize, payload_size)) {
     ThrowError("GCN model file ", source, " is corrupt (checksum mismatch)");
   }
+  return payload_size;
+}
 
-  // Split the payload into sections.
-  std::map<std::string, std::pair<size_t, size_t>> sections;
-  {
+// The payload's tagged sections, each read through its own bounded Reader.
+class ModelSections {
+ public:
+  ModelSections(const std::string& bytes,
+                uint64_t payload_size,
+                const std::string& source)
+      : bytes_(bytes), source_(source) {
     size_t pos = kHeaderSize;
     const size_t end = kHeaderSize + payload_size;
     while (pos < end) {
@@ -262,113 +271,144 @@ GcnModel DeserializeGcnModel(const std::string& bytes,
                    tag,
                    " overruns the payload");
       }
-      sections[tag] = {pos, pos + length};
+      sections_[tag] = {pos, pos + length};
       pos += length;
     }
   }
-  auto section = [&](const char* tag) {
-    auto it = sections.find(tag);
-    if (it == sections.end()) {
-      ThrowError("GCN model file ", source, " lacks the ", tag, " section");
-    }
-    return Reader(bytes, it->second.first, it->second.second, source, tag);
-  };
 
-  GcnModel model;
-  {
-    Reader r = section("NETS");
-    model.shape.input_dim = r.GetPositiveInt("input dimension", 1 << 20);
-    const int layers = r.GetPositiveInt("layer count", 64);
-    model.shape.gcn_dims.clear();
-    for (int l = 0; l < layers; ++l) {
-      model.shape.gcn_dims.push_back(r.GetPositiveInt("layer size", 1 << 16));
+  bool Has(const char* tag) const { return sections_.count(tag) > 0; }
+
+  Reader Open(const char* tag) const {
+    auto it = sections_.find(tag);
+    if (it == sections_.end()) {
+      ThrowError("GCN model file ", source_, " lacks the ", tag, " section");
     }
-    model.shape.fc_dim = r.GetPositiveInt("FC size", 1 << 16);
-    const int32_t aggregation = r.Get<int32_t>();
-    if (aggregation != 0 && aggregation != 1) {
-      ThrowError("GCN model file ",
-                 source,
-                 " has an unknown aggregation ",
-                 aggregation);
-    }
-    model.aggregation = static_cast<GcnAggregation>(aggregation);
-    r.ExpectEnd();
+    return Reader(bytes_, it->second.first, it->second.second, source_, tag);
   }
-  // Optional one-value sections: absent = 0; values above `max` unknown.
-  auto optional_enum = [&](const char* tag, int max, const char* what) {
-    if (!sections.count(tag)) return 0;
-    Reader r = section(tag);
+
+  // An optional one-value section: absent = 0; values above `max` unknown.
+  int OptionalEnum(const char* tag, int max, const char* what) const {
+    if (!Has(tag)) return 0;
+    Reader r = Open(tag);
     const int32_t value = r.Get<int32_t>();
     if (value < 0 || value > max) {
       ThrowError(
-          "GCN model file ", source, " has an unknown ", what, " ", value);
+          "GCN model file ", source_, " has an unknown ", what, " ", value);
     }
     r.ExpectEnd();
     return static_cast<int>(value);
-  };
+  }
+
+  const std::string& Source() const { return source_; }
+
+ private:
+  const std::string& bytes_;
+  const std::string& source_;
+  std::map<std::string, std::pair<size_t, size_t>> sections_;
+};
+
+void ReadNetworkSection(const ModelSections& sections, GcnModel* model) {
+  Reader r = sections.Open("NETS");
+  model->shape.input_dim = r.GetPositiveInt("input dimension", 1 << 20);
+  const int layers = r.GetPositiveInt("layer count", 64);
+  model->shape.gcn_dims.clear();
+  for (int l = 0; l < layers; ++l) {
+    model->shape.gcn_dims.push_back(r.GetPositiveInt("layer size", 1 << 16));
+  }
+  model->shape.fc_dim = r.GetPositiveInt("FC size", 1 << 16);
+  const int32_t aggregation = r.Get<int32_t>();
+  if (aggregation != 0 && aggregation != 1) {
+    ThrowError("GCN model file ",
+               sections.Source(),
+               " has an unknown aggregation ",
+               aggregation);
+  }
+  model->aggregation = static_cast<GcnAggregation>(aggregation);
+  r.ExpectEnd();
+}
+
+// EMBD, read after the network and the structural features it must fit.
+void ReadEmbeddingSection(const ModelSections& sections, GcnModel* model) {
+  Reader r = sections.Open("EMBD");
+  model->embedding.type = r.GetString();
+  model->embedding.dim = r.Get<int32_t>();
+  model->embedding.blob = r.GetString();
+  r.ExpectEnd();
+  if (model->embedding.dim != model->EmbeddingDim()) {
+    ThrowError("GCN model file ",
+               sections.Source(),
+               ": embedding dimension ",
+               model->embedding.dim,
+               " does not fit the network input ",
+               model->shape.input_dim,
+               " with ",
+               QesStructureFeaturesName(model->structure_features),
+               " structural features");
+  }
+}
+
+// NORM and WGTS, whose sizes follow from the network shape.
+void ReadParameterSections(const ModelSections& sections, GcnModel* model) {
+  {
+    Reader r = sections.Open("NORM");
+    r.ExpectFloatsLeft(2 * static_cast<uint64_t>(model->shape.input_dim));
+    model->input_shift.resize(model->shape.input_dim);
+    model->input_scale.resize(model->shape.input_dim);
+    r.GetFloats(model->input_shift.data(), model->shape.input_dim);
+    r.GetFloats(model->input_scale.data(), model->shape.input_dim);
+    r.ExpectEnd();
+  }
+  Reader r = sections.Open("WGTS");
+  const uint64_t count = r.Get<uint64_t>();
+  const size_t needed = GcnParameterLayout(model->shape).size;
+  if (count != needed) {
+    ThrowError("GCN model file ",
+               sections.Source(),
+               " has ",
+               count,
+               " weights but its network shape needs ",
+               needed);
+  }
+  r.ExpectFloatsLeft(count);
+  model->params = GcnParameters<float>(model->shape);
+  r.GetFloats(model->params.Values().data(), count);
+  r.ExpectEnd();
+}
+
+// INFO and the optional NOTE.
+void ReadInfoSections(const ModelSections& sections, GcnModel* model) {
+  {
+    Reader r = sections.Open("INFO");
+    model->info.tau_mo = r.Get<float>();
+    model->info.tau_ct = r.Get<float>();
+    model->info.test_k1 = r.Get<int32_t>();
+    model->info.test_k2 = r.Get<int32_t>();
+    model->info.test_u = r.Get<int32_t>();
+    model->info.threshold = r.Get<float>();
+    r.ExpectEnd();
+  }
+  if (sections.Has("NOTE")) {
+    Reader r = sections.Open("NOTE");
+    model->info.notes = r.GetString();
+    r.ExpectEnd();
+  }
+}
+
+}  // namespace
+
+GcnModel DeserializeGcnModel(const std::string& bytes,
+                             const std::string& source) {
+  const uint64_t payload_size = CheckModelFileFrame(bytes, source);
+  const ModelSections sections(bytes, payload_size, source);
+  GcnModel model;
+  ReadNetworkSection(sections, &model);
   model.feature_scaling = static_cast<QesFeatureScaling>(
-      optional_enum("FEAT", 1, "feature scaling"));
+      sections.OptionalEnum("FEAT", 1, "feature scaling"));
   model.structure_features = static_cast<QesStructureFeatures>(
-      optional_enum("STRC", 2, "structural node feature set"));
-  {
-    Reader r = section("EMBD");
-    model.embedding.type = r.GetString();
-    model.embedding.dim = r.Get<int32_t>();
-    model.embedding.blob = r.GetString();
-    r.ExpectEnd();
-    if (model.embedding.dim != model.EmbeddingDim()) {
-      ThrowError("GCN model file ",
-                 source,
-                 ": embedding dimension ",
-                 model.embedding.dim,
-                 " does not fit the network input ",
-                 model.shape.input_dim,
-                 " with ",
-                 QesStructureFeaturesName(model.structure_features),
-                 " structural features");
-    }
-  }
-  {
-    Reader r = section("NORM");
-    r.ExpectFloatsLeft(2 * static_cast<uint64_t>(model.shape.input_dim));
-    model.input_shift.resize(model.shape.input_dim);
-    model.input_scale.resize(model.shape.input_dim);
-    r.GetFloats(model.input_shift.data(), model.shape.input_dim);
-    r.GetFloats(model.input_scale.data(), model.shape.input_dim);
-    r.ExpectEnd();
-  }
-  {
-    Reader r = section("WGTS");
-    const uint64_t count = r.Get<uint64_t>();
-    const size_t needed = GcnParameterLayout(model.shape).size;
-    if (count != needed) {
-      ThrowError("GCN model file ",
-                 source,
-                 " has ",
-                 count,
-                 " weights but its network shape needs ",
-                 needed);
-    }
-    r.ExpectFloatsLeft(count);
-    model.params = GcnParameters<float>(model.shape);
-    r.GetFloats(model.params.Values().data(), count);
-    r.ExpectEnd();
-  }
-  {
-    Reader r = section("INFO");
-    model.info.tau_mo = r.Get<float>();
-    model.info.tau_ct = r.Get<float>();
-    model.info.test_k1 = r.Get<int32_t>();
-    model.info.test_k2 = r.Get<int32_t>();
-    model.info.test_u = r.Get<int32_t>();
-    model.info.threshold = r.Get<float>();
-    r.ExpectEnd();
-  }
-  if (sections.count("NOTE")) {
-    Reader r = section("NOTE");
-    model.info.notes = r.GetString();
-    r.ExpectEnd();
-  }
+      sections.OptionalEnum("STRC", 2, "structural node feature set"));
+  ReadEmbeddingSection(sections, &model);
+  ReadParameterSections(sections, &model);
+  ReadInfoSections(sections, &model);
   model.source = source;
   try {
     model.Check();

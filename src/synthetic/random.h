@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "util/random.h"
+
 namespace colmap_gcn {
 
 // A small, platform-independent random number generator (SplitMix64) with
@@ -14,18 +16,10 @@ class SyntheticRandom {
 
   // A generator for a sub-stream, e.g. SyntheticRandom(Mix(seed, image_idx)).
   static uint64_t Mix(uint64_t a, uint64_t b) {
-    uint64_t z = a * 0x9E3779B97F4A7C15ULL + b + 0x632BE59BD9B4E019ULL;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
+    return SplitMix64Mix(a * kSplitMix64Increment + b + 0x632BE59BD9B4E019ULL);
   }
 
-  uint64_t Next() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
+  uint64_t Next() { return SplitMix64(&state_); }
 
   // Uniform in [0, 1).
   double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }

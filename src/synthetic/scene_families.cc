@@ -234,6 +234,96 @@ SyntheticWorld BuildRepetitiveWorld(const WorldParams& params) {
   return world;
 }
 
+namespace {
+
+// The symmetric world's tiered tower, from height z up: n-sided walls,
+// soffits and roofs, identical on every side.
+void AddSymmetricTiers(
+    int n, double phase, double z, TextureFactory* textures, Scene* scene) {
+  // Tiers: wall radius, wall top, roof rim radius, roof top radius, roof top
+  // height (the next tier's wall starts there).
+  struct Tier {
+    double wall_radius, wall_top, rim_radius, top_radius, top_z;
+  };
+  const Tier tiers[] = {{4.0, 3.6, 4.8, 3.0, 4.6},
+                        {3.0, 6.2, 3.7, 1.8, 7.0},
+                        {1.8, 8.2, 2.4, 0.0, 9.6}};
+  const int soffit_tex = textures->Smooth(256);
+  for (const Tier& tier : tiers) {
+    const int wall_tex = textures->Random(1024, 1024);
+    const int roof_tex = textures->Random(1024, 512);
+    scene->AddPrism(RegularPolygon(n, tier.wall_radius, phase),
+                    z,
+                    tier.wall_top,
+                    {wall_tex},
+                    -1,
+                    0.0);
+    const auto wall = RegularPolygon(n, tier.wall_radius, phase);
+    const auto rim = RegularPolygon(n, tier.rim_radius, phase);
+    const auto top = RegularPolygon(n, tier.top_radius, phase);
+    const double zr = tier.wall_top;
+    for (int k = 0; k < n; ++k) {
+      const int k1 = (k + 1) % n;
+      // Soffit under the overhang (facing down).
+      scene->AddQuad(Eigen::Vector3d(rim[k1].x(), rim[k1].y(), zr),
+                     Eigen::Vector3d(rim[k].x(), rim[k].y(), zr),
+                     Eigen::Vector3d(wall[k].x(), wall[k].y(), zr),
+                     Eigen::Vector3d(wall[k1].x(), wall[k1].y(), zr),
+                     soffit_tex);
+      if (tier.top_radius > 0.0) {
+        scene->AddQuad(Eigen::Vector3d(rim[k].x(), rim[k].y(), zr),
+                       Eigen::Vector3d(rim[k1].x(), rim[k1].y(), zr),
+                       Eigen::Vector3d(top[k1].x(), top[k1].y(), tier.top_z),
+                       Eigen::Vector3d(top[k].x(), top[k].y(), tier.top_z),
+                       roof_tex);
+      }
+    }
+    if (tier.top_radius <= 0.0) {
+      std::vector<Eigen::Vector3d> rim3;
+      for (const auto& p : rim) rim3.emplace_back(p.x(), p.y(), zr);
+      scene->AddFan(Eigen::Vector3d(0, 0, tier.top_z), rim3, roof_tex, 2.0);
+    }
+    z = tier.top_z;
+  }
+}
+
+// What breaks the symmetric world's symmetry: a plaque on one side of the
+// lowest wall and two unique objects on the ground.
+void AddSymmetryBreakingDetails(int n,
+                                TextureFactory* textures,
+                                SyntheticRandom* rng,
+                                Scene* scene) {
+  // A plaque on one side of the lowest wall, just in front of it.
+  const double apothem = 4.0 * std::cos(M_PI / n) + 0.02;
+  const double half = 0.6;
+  const Eigen::Vector2d normal(1.0, 0.0);  // the side facing +x
+  const Eigen::Vector2d tangent(0.0, 1.0);
+  const Eigen::Vector2d c = apothem * normal;
+  const Eigen::Vector2d a = c - half * tangent;
+  const Eigen::Vector2d b = c + half * tangent;
+  scene->AddQuad(Eigen::Vector3d(a.x(), a.y(), 1.9),
+                 Eigen::Vector3d(b.x(), b.y(), 1.9),
+                 Eigen::Vector3d(b.x(), b.y(), 2.8),
+                 Eigen::Vector3d(a.x(), a.y(), 2.8),
+                 textures->Random(256, 256));
+  // Two unique objects on the ground.
+  for (int d = 0; d < 2; ++d) {
+    const double angle = rng->Uniform(0.0, 2.0 * M_PI);
+    std::vector<int> sides;
+    for (int k = 0; k < 4; ++k) sides.push_back(textures->Random(256, 256));
+    scene->AddBox(8.5 * Eigen::Vector2d(std::cos(angle), std::sin(angle)),
+                  Eigen::Vector2d(0.9, 0.9),
+                  angle,
+                  0.0,
+                  1.2,
+                  sides,
+                  textures->Random(128, 128),
+                  0.0);
+  }
+}
+
+}  // namespace
+
 SyntheticWorld BuildSymmetricWorld(const WorldParams& params) {
   SyntheticWorld world;
   Scene& scene = world.scene;
@@ -278,80 +368,9 @@ SyntheticWorld BuildSymmetricWorld(const WorldParams& params) {
                    0.0);
     z += 0.4;
   }
-  // Tiers: wall radius, wall top, roof rim radius, roof top radius, roof top
-  // height (the next tier's wall starts there).
-  struct Tier {
-    double wall_radius, wall_top, rim_radius, top_radius, top_z;
-  };
-  const Tier tiers[] = {{4.0, 3.6, 4.8, 3.0, 4.6},
-                        {3.0, 6.2, 3.7, 1.8, 7.0},
-                        {1.8, 8.2, 2.4, 0.0, 9.6}};
-  const int soffit_tex = textures.Smooth(256);
-  for (const Tier& tier : tiers) {
-    const int wall_tex = textures.Random(1024, 1024);
-    const int roof_tex = textures.Random(1024, 512);
-    scene.AddPrism(RegularPolygon(n, tier.wall_radius, phase),
-                   z,
-                   tier.wall_top,
-                   {wall_tex},
-                   -1,
-                   0.0);
-    const auto wall = RegularPolygon(n, tier.wall_radius, phase);
-    const auto rim = RegularPolygon(n, tier.rim_radius, phase);
-    const auto top = RegularPolygon(n, tier.top_radius, phase);
-    const double zr = tier.wall_top;
-    for (int k = 0; k < n; ++k) {
-      const int k1 = (k + 1) % n;
-      // Soffit under the overhang (facing down).
-      scene.AddQuad(Eigen::Vector3d(rim[k1].x(), rim[k1].y(), zr),
-                    Eigen::Vector3d(rim[k].x(), rim[k].y(), zr),
-                    Eigen::Vector3d(wall[k].x(), wall[k].y(), zr),
-                    Eigen::Vector3d(wall[k1].x(), wall[k1].y(), zr),
-                    soffit_tex);
-      if (tier.top_radius > 0.0) {
-        scene.AddQuad(Eigen::Vector3d(rim[k].x(), rim[k].y(), zr),
-                      Eigen::Vector3d(rim[k1].x(), rim[k1].y(), zr),
-                      Eigen::Vector3d(top[k1].x(), top[k1].y(), tier.top_z),
-                      Eigen::Vector3d(top[k].x(), top[k].y(), tier.top_z),
-                      roof_tex);
-      }
-    }
-    if (tier.top_radius <= 0.0) {
-      std::vector<Eigen::Vector3d> rim3;
-      for (const auto& p : rim) rim3.emplace_back(p.x(), p.y(), zr);
-      scene.AddFan(Eigen::Vector3d(0, 0, tier.top_z), rim3, roof_tex, 2.0);
-    }
-    z = tier.top_z;
-  }
-
+  AddSymmetricTiers(n, phase, z, &textures, &scene);
   if (params.add_details) {
-    // A plaque on one side of the lowest wall, just in front of it.
-    const double apothem = 4.0 * std::cos(M_PI / n) + 0.02;
-    const double half = 0.6;
-    const Eigen::Vector2d normal(1.0, 0.0);  // the side facing +x
-    const Eigen::Vector2d tangent(0.0, 1.0);
-    const Eigen::Vector2d c = apothem * normal;
-    const Eigen::Vector2d a = c - half * tangent;
-    const Eigen::Vector2d b = c + half * tangent;
-    scene.AddQuad(Eigen::Vector3d(a.x(), a.y(), 1.9),
-                  Eigen::Vector3d(b.x(), b.y(), 1.9),
-                  Eigen::Vector3d(b.x(), b.y(), 2.8),
-                  Eigen::Vector3d(a.x(), a.y(), 2.8),
-                  textures.Random(256, 256));
-    // Two unique objects on the ground.
-    for (int d = 0; d < 2; ++d) {
-      const double angle = rng.Uniform(0.0, 2.0 * M_PI);
-      std::vector<int> sides;
-      for (int k = 0; k < 4; ++k) sides.push_back(textures.Random(256, 256));
-      scene.AddBox(8.5 * Eigen::Vector2d(std::cos(angle), std::sin(angle)),
-                   Eigen::Vector2d(0.9, 0.9),
-                   angle,
-                   0.0,
-                   1.2,
-                   sides,
-                   textures.Random(128, 128),
-                   0.0);
-    }
+    AddSymmetryBreakingDetails(n, &textures, &rng, &scene);
   }
 
   world.target = Eigen::Vector3d(0, 0, 4.0);

@@ -91,6 +91,121 @@ void SyntheticSceneOptions::Check() const {
   CHECK_OPTION_RANGE(jpeg_quality, 1, 100);
 }
 
+namespace {
+
+// The ground truth as a COLMAP model: image i's camera and, as its 2D
+// points, the surface samples it sees (one 3D point per sample seen).
+Reconstruction GroundTruthModel(
+    const SyntheticSceneOptions& options,
+    const SyntheticWorld& world,
+    const std::vector<SurfaceSample>& samples,
+    const std::vector<std::vector<SampleObservation>>& visible,
+    size_t* num_observations) {
+  Reconstruction model;
+  ModelCamera model_camera;
+  model_camera.camera_id = 1;
+  model_camera.model_id = kPinholeModelId;
+  model_camera.width = options.width;
+  model_camera.height = options.height;
+  const PinholeCamera& first = world.cameras[0];
+  model_camera.params = {first.fx, first.fy, first.cx, first.cy};
+  model.cameras[1] = model_camera;
+
+  std::vector<point3D_t> point_ids(samples.size(), kInvalidPoint3DId);
+  point3D_t next_point_id = 1;
+  for (int i = 0; i < static_cast<int>(visible.size()); ++i) {
+    const PinholeCamera& camera = world.cameras[i];
+    ModelImage image;
+    image.image_id = static_cast<image_t>(i + 1);
+    image.qvec = camera.Qvec();
+    image.tvec = camera.t;
+    image.camera_id = 1;
+    image.name = SyntheticImageName(i);
+    for (const SampleObservation& observation : visible[i]) {
+      point3D_t& point_id = point_ids[observation.sample_idx];
+      if (point_id == kInvalidPoint3DId) {
+        point_id = next_point_id++;
+        ModelPoint3D point;
+        const SurfaceSample& sample = samples[observation.sample_idx];
+        point.xyz = sample.xyz;
+        // Sample colours are BGR.
+        for (int c = 0; c < 3; ++c) {
+          point.color(c) = static_cast<uint8_t>(
+              std::clamp(std::lround(sample.color(2 - c)), 0L, 255L));
+        }
+        point.error = 0.0;
+        model.points3D[point_id] = point;
+      }
+      TrackElement element;
+      element.image_id = image.image_id;
+      element.point2D_idx = static_cast<point2D_t>(image.points2D.size());
+      model.points3D[point_id].track.push_back(element);
+      image.points2D.push_back(observation.xy);
+      image.point3D_ids.push_back(point_id);
+    }
+    *num_observations += image.points2D.size();
+    model.images[image.image_id] = std::move(image);
+  }
+  return model;
+}
+
+// Every pair's overlap from the samples each image sees (visibility bitsets);
+// distractors share nothing with anything.
+PairOverlapTable VisibilityOverlaps(
+    const std::vector<std::vector<SampleObservation>>& visible,
+    size_t num_samples,
+    int num_distractors,
+    size_t* num_pairs_overlap_03) {
+  const int num_images = static_cast<int>(visible.size());
+  const size_t num_words = (num_samples + 63) / 64;
+  std::vector<std::vector<uint64_t>> bits(num_images,
+                                          std::vector<uint64_t>(num_words, 0));
+  for (int i = 0; i < num_images; ++i) {
+    for (const SampleObservation& observation : visible[i]) {
+      bits[i][observation.sample_idx / 64] |= 1ULL
+                                              << (observation.sample_idx % 64);
+    }
+  }
+  std::vector<std::string> names;
+  std::vector<int> num_visible;
+  for (int i = 0; i < num_images; ++i) {
+    names.push_back(SyntheticImageName(i));
+    num_visible.push_back(static_cast<int>(visible[i].size()));
+  }
+  for (int d = 0; d < num_distractors; ++d) {
+    names.push_back(DistractorImageName(d));
+    num_visible.push_back(0);
+  }
+  PairOverlapTable table;
+  for (size_t i = 0; i < names.size(); ++i) {
+    for (size_t j = i + 1; j < names.size(); ++j) {
+      PairOverlap pair;
+      pair.name1 = names[i];
+      pair.name2 = names[j];
+      pair.num_visible1 = num_visible[i];
+      pair.num_visible2 = num_visible[j];
+      if (static_cast<int>(j) < num_images) {
+        int shared = 0;
+        for (size_t w = 0; w < num_words; ++w) {
+          shared += __builtin_popcountll(bits[i][w] & bits[j][w]);
+        }
+        pair.num_shared = shared;
+        pair.overlap12 =
+            pair.num_visible1 > 0 ? double(shared) / pair.num_visible1 : 0.0;
+        pair.overlap21 =
+            pair.num_visible2 > 0 ? double(shared) / pair.num_visible2 : 0.0;
+      }
+      if (pair.MinOverlap() >= 0.3) {
+        ++*num_pairs_overlap_03;
+      }
+      table.Add(pair);
+    }
+  }
+  return table;
+}
+
+}  // namespace
+
 SyntheticSceneSummary GenerateSyntheticScene(
     const SyntheticSceneOptions& options, const std::string& output_path) {
   const Timer timer;
@@ -161,100 +276,16 @@ SyntheticSceneSummary GenerateSyntheticScene(
         options.jpeg_quality);
   });
 
-  // Ground-truth model.
-  Reconstruction model;
-  ModelCamera model_camera;
-  model_camera.camera_id = 1;
-  model_camera.model_id = kPinholeModelId;
-  model_camera.width = options.width;
-  model_camera.height = options.height;
-  const PinholeCamera& first = world.cameras[0];
-  model_camera.params = {first.fx, first.fy, first.cx, first.cy};
-  model.cameras[1] = model_camera;
-
-  std::vector<point3D_t> point_ids(samples.size(), kInvalidPoint3DId);
-  point3D_t next_point_id = 1;
   SyntheticSceneSummary summary;
-  for (int i = 0; i < num_images; ++i) {
-    const PinholeCamera& camera = world.cameras[i];
-    ModelImage image;
-    image.image_id = static_cast<image_t>(i + 1);
-    image.qvec = camera.Qvec();
-    image.tvec = camera.t;
-    image.camera_id = 1;
-    image.name = SyntheticImageName(i);
-    for (const SampleObservation& observation : visible[i]) {
-      point3D_t& point_id = point_ids[observation.sample_idx];
-      if (point_id == kInvalidPoint3DId) {
-        point_id = next_point_id++;
-        ModelPoint3D point;
-        const SurfaceSample& sample = samples[observation.sample_idx];
-        point.xyz = sample.xyz;
-        // Sample colours are BGR.
-        for (int c = 0; c < 3; ++c) {
-          point.color(c) = static_cast<uint8_t>(
-              std::clamp(std::lround(sample.color(2 - c)), 0L, 255L));
-        }
-        point.error = 0.0;
-        model.points3D[point_id] = point;
-      }
-      TrackElement element;
-      element.image_id = image.image_id;
-      element.point2D_idx = static_cast<point2D_t>(image.points2D.size());
-      model.points3D[point_id].track.push_back(element);
-      image.points2D.push_back(observation.xy);
-      image.point3D_ids.push_back(point_id);
-    }
-    summary.num_observations += image.points2D.size();
-    model.images[image.image_id] = std::move(image);
-  }
+  const Reconstruction model = GroundTruthModel(
+      options, world, samples, visible, &summary.num_observations);
   model.WriteText(gt_dir);
 
-  // Pair table from visibility bitsets.
-  const size_t num_words = (samples.size() + 63) / 64;
-  std::vector<std::vector<uint64_t>> bits(num_images,
-                                          std::vector<uint64_t>(num_words, 0));
-  for (int i = 0; i < num_images; ++i) {
-    for (const SampleObservation& observation : visible[i]) {
-      bits[i][observation.sample_idx / 64] |= 1ULL
-                                              << (observation.sample_idx % 64);
-    }
-  }
-  std::vector<std::string> names;
-  std::vector<int> num_visible;
-  for (int i = 0; i < num_images; ++i) {
-    names.push_back(SyntheticImageName(i));
-    num_visible.push_back(static_cast<int>(visible[i].size()));
-  }
-  for (int d = 0; d < options.num_distractors; ++d) {
-    names.push_back(DistractorImageName(d));
-    num_visible.push_back(0);
-  }
-  PairOverlapTable table;
-  for (size_t i = 0; i < names.size(); ++i) {
-    for (size_t j = i + 1; j < names.size(); ++j) {
-      PairOverlap pair;
-      pair.name1 = names[i];
-      pair.name2 = names[j];
-      pair.num_visible1 = num_visible[i];
-      pair.num_visible2 = num_visible[j];
-      if (static_cast<int>(j) < num_images) {
-        int shared = 0;
-        for (size_t w = 0; w < num_words; ++w) {
-          shared += __builtin_popcountll(bits[i][w] & bits[j][w]);
-        }
-        pair.num_shared = shared;
-        pair.overlap12 =
-            pair.num_visible1 > 0 ? double(shared) / pair.num_visible1 : 0.0;
-        pair.overlap21 =
-            pair.num_visible2 > 0 ? double(shared) / pair.num_visible2 : 0.0;
-      }
-      if (pair.MinOverlap() >= 0.3) {
-        ++summary.num_pairs_overlap_03;
-      }
-      table.Add(pair);
-    }
-  }
+  const PairOverlapTable table =
+      VisibilityOverlaps(visible,
+                         samples.size(),
+                         options.num_distractors,
+                         &summary.num_pairs_overlap_03);
   WritePairOverlapTable(table, JoinPaths(gt_dir, "pair_overlap.csv"));
 
   std::string distractor_list;

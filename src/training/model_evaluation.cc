@@ -183,9 +183,13 @@ std::vector<FixedKComparison> CompareWithFixedK(
   return comparisons;
 }
 
-std::string FormatFixedKComparison(
-    const std::vector<FixedKComparison>& comparisons) {
-  std::ostringstream out;
+namespace {
+
+// The main table: the GCN at its threshold against fixed-k retrieval, with
+// mean F, mean AP and how often the precision target is met.
+void FormatOperatingPointTable(const std::vector<FixedKComparison>& comparisons,
+                               std::ostringstream* out_ptr) {
+  std::ostringstream& out = *out_ptr;
   char line[256];
   out << "GCN at its model's threshold (thr); kept: the fraction of its "
          "candidate pairs (the 1-hop nodes of every QES) the GCN keeps; "
@@ -248,9 +252,13 @@ std::string FormatFixedKComparison(
                 reachable_target,
                 similarity_target);
   out << line;
+}
 
-  // Wrong pairs: what folds models on ambiguous scenes. kNN@R is the
-  // fewest most-similar pairs with the GCN's recall.
+// Wrong pairs: what folds models on ambiguous scenes. kNN@R is the fewest
+// most-similar pairs with the GCN's recall.
+void FormatWrongPairsTable(const std::vector<FixedKComparison>& comparisons,
+                           std::ostringstream* out_ptr) {
+  std::ostringstream& out = *out_ptr;
   out << "\nWrong pairs (labelled pairs whose images share nothing) admitted "
          "by the GCN and by kNN at equal recall (kNN@R: the fewest most "
          "similar pairs with at least the GCN's true positives).\n\n"
@@ -272,10 +280,13 @@ std::string FormatFixedKComparison(
   out << "\nWrong pairs in total: GCN " << gcn_wrong << ", kNN@R " << knn_wrong
       << "; GCN admits fewer on " << fewer << " of " << comparisons.size()
       << " scenes.\n";
+}
 
-  // Collections of scenes that share nothing: pairs across scenes can only
-  // be wrong (the unrelated-photo target: <= 1 % at within-scene recall
-  // >= 0.9).
+// Collections of scenes that share nothing: pairs across scenes can only be
+// wrong (the unrelated-photo target: <= 1 % at within-scene recall >= 0.9).
+void FormatCollectionTable(const std::vector<FixedKComparison>& comparisons,
+                           std::ostringstream* out_ptr) {
+  std::ostringstream& out = *out_ptr;
   bool any_collection = false;
   for (const auto& c : comparisons) {
     if (!c.is_collection) continue;
@@ -301,9 +312,15 @@ std::string FormatFixedKComparison(
         << percent(c.equal_recall.num_cross_scene, c.equal_recall.num_pairs)
         << " |\n";
   }
+}
 
-  // Whether any threshold could meet the ground-truth target: the best
-  // precision each ranking reaches at the target recall.
+// Whether any threshold could meet the ground-truth target: the best
+// precision each ranking reaches at the target recall.
+void FormatPrecisionAtRecallTable(
+    const std::vector<FixedKComparison>& comparisons,
+    std::ostringstream* out_ptr) {
+  std::ostringstream& out = *out_ptr;
+  char line[32];
   std::snprintf(line, sizeof(line), "%.1f", kPrecisionAtRecall);
   out << "\nBest precision at recall >= " << line
       << " (the threshold chosen with the labels: an upper bound for any "
@@ -315,6 +332,17 @@ std::string FormatFixedKComparison(
         << PrecisionOrDash(c.gcn_precision_at_recall) << " | "
         << PrecisionOrDash(c.similarity_precision_at_recall) << " |\n";
   }
+}
+
+}  // namespace
+
+std::string FormatFixedKComparison(
+    const std::vector<FixedKComparison>& comparisons) {
+  std::ostringstream out;
+  FormatOperatingPointTable(comparisons, &out);
+  FormatWrongPairsTable(comparisons, &out);
+  FormatCollectionTable(comparisons, &out);
+  FormatPrecisionAtRecallTable(comparisons, &out);
   return out.str();
 }
 

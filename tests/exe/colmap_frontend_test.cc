@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "controllers/pair_generator_registry.h"
 #include "test_utils.h"
 #include "util/file.h"
 #include "util/string.h"
@@ -69,6 +70,30 @@ TEST(ColmapFrontend, GcnMatcherHelpAndBadOptions) {
   EXPECT_EQ(RunFrontend("gcn_matcher --GcnMatching.nope 1", &output), 1);
   EXPECT_EQ(CountLines(output), 1u) << output;
   EXPECT_TRUE(StringStartsWith(output, "ERROR: ")) << output;
+}
+
+TEST(ColmapFrontend, BenchmarkHelpListsEveryRegisteredMethod) {
+  std::string output;
+  EXPECT_EQ(RunFrontend("gcn_benchmark -h", &output), 0);
+  // The --methods entry runs up to the next flag; help wraps lines, so
+  // whitespace is collapsed before looking for "name:<k>".
+  const size_t begin = output.find("--methods");
+  ASSERT_NE(begin, std::string::npos) << output;
+  const size_t end = output.find("--", begin + 2);
+  std::string methods_help;
+  for (const std::string& word :
+       StringSplit(output.substr(begin, end - begin), " \n")) {
+    if (!word.empty()) methods_help += word + " ";
+  }
+  const PairGeneratorRegistry& registry = PairGenerators();
+  for (const std::string& name : registry.Names()) {
+    if (!registry.IsBenchmarkMethod(name)) continue;
+    const std::string syntax = registry.TakesDepth(name) ? name + ":<k>" : name;
+    EXPECT_NE(methods_help.find(" " + syntax + " "), std::string::npos)
+        << syntax << " missing from: " << methods_help;
+  }
+  EXPECT_NE(methods_help.find(" oracle "), std::string::npos) << methods_help;
+  EXPECT_NE(methods_help.find(" none"), std::string::npos) << methods_help;
 }
 
 TEST(ColmapFrontend, MissingDatabaseIsOneLineErrorAndNotCreated) {
