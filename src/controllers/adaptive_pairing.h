@@ -6,10 +6,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "controllers/gcn_model_pairing.h"
-#include "feature/pair_generator_spec.h"
-#include "feature/pairing.h"
-#include "retrieval/knn_pairing.h"
+#include "pairing/gcn_model_pairing.h"
+#include "pairing/pair_generator_spec.h"
+#include "pairing/pairing.h"
+#include "pairing/knn_pairing.h"
 #include "util/timer.h"
 #include "util/types.h"
 

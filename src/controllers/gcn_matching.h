@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "controllers/pair_generator_registry.h"
+#include "pairing/pair_generator_registry.h"
 #include "controllers/pair_matching.h"
-#include "feature/pairing.h"
+#include "pairing/pairing.h"
 #include "scene/database.h"
 
 namespace colmap_gcn {

@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "scene/database.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"

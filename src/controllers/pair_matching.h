@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
-#include "feature/pairing.h"
+#include "pairing/pairing.h"
 #include "scene/database.h"
 #include "util/types.h"
 

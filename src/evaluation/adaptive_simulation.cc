@@ -6,9 +6,9 @@
 #include <unordered_set>
 
 #include "controllers/adaptive_pairing.h"
-#include "controllers/gcn_model_pairing.h"
+#include "pairing/gcn_model_pairing.h"
 #include "evaluation/collection.h"
-#include "retrieval/knn_pairing.h"
+#include "pairing/knn_pairing.h"
 #include "scene/database_copy.h"
 #include "util/error.h"
 

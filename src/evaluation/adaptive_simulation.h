@@ -6,7 +6,7 @@
 
 #include "controllers/gcn_matching.h"
 #include "evaluation/labels.h"
-#include "feature/pairing.h"
+#include "pairing/pairing.h"
 #include "scene/database.h"
 
 namespace colmap_gcn {

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "controllers/pair_generator_registry.h"
+#include "pairing/pair_generator_registry.h"
 #include "evaluation/benchmark_runner.h"
 #include "evaluation/dataset.h"
 #include "evaluation/method.h"

@@ -17,7 +17,7 @@
 #include "evaluation/json_file.h"
 #include "evaluation/labels.h"
 #include "evaluation/method.h"
-#include "feature/pairing.h"
+#include "pairing/pairing.h"
 #include "scene/database.h"
 #include "scene/reconstruction.h"
 #include "util/file.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "scene/reconstruction.h"
 
 namespace colmap_gcn {

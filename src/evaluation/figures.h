@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "evaluation/labels.h"
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 
 namespace colmap_gcn {
 

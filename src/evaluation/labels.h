@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 
 namespace colmap_gcn {
 

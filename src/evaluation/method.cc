@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "controllers/pair_generator_registry.h"
+#include "pairing/pair_generator_registry.h"
 #include "util/error.h"
 #include "util/string.h"
 

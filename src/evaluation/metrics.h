@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "evaluation/labels.h"
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "math/precision_recall.h"
 
 namespace colmap_gcn {

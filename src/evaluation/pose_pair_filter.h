@@ -5,7 +5,7 @@
 
 #include "controllers/colmap_runner.h"
 #include "controllers/pair_matching.h"
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "scene/reconstruction.h"
 
 namespace colmap_gcn {

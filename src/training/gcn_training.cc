@@ -8,9 +8,9 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "gcn/gcn_pair_generator.h"
+#include "pairing/gcn_pair_generator.h"
 #include "retrieval/embedding_cache.h"
-#include "retrieval/knn_pairing.h"
+#include "pairing/knn_pairing.h"
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"

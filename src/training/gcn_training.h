@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "controllers/gcn_model_pairing.h"
+#include "pairing/gcn_model_pairing.h"
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
 #include "math/precision_recall.h"

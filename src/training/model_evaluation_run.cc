@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "controllers/gcn_model_pairing.h"
+#include "pairing/gcn_model_pairing.h"
 #include "gcn/model_file.h"
 #include "util/error.h"
 

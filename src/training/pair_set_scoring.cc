@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <unordered_set>
 
-#include "gcn/gcn_pair_generator.h"
-#include "retrieval/knn_pairing.h"
+#include "pairing/gcn_pair_generator.h"
+#include "pairing/knn_pairing.h"
 #include "util/error.h"
 #include "util/threading.h"
 

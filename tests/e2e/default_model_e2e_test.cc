@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "e2e_scene.h"
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "scene/database.h"
 #include "scene/reconstruction.h"
 #include "scene/reconstruction_stats.h"

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "e2e_scene.h"
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "gcn/gcn_model.h"
 #include "gcn/model_file.h"
 #include "retrieval/vlad.h"

@@ -1,6 +1,6 @@
 // Fuzzes the pairs-file reader (COLMAP 3.8's `name1 name2` format).
 
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "fuzz_utils.h"
 #include "util/error.h"
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gcn/gcn_pair_generator.h"
+#include "pairing/gcn_pair_generator.h"
 #include "gcn/gcn_test_utils.h"
 #include "training/model_evaluation.h"
 #include "util/error.h"

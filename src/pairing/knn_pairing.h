@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "feature/pair_generator_spec.h"
-#include "feature/pairing.h"
+#include "pairing/pair_generator_spec.h"
+#include "pairing/pairing.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/global_descriptors.h"
 #include "retrieval/knn.h"

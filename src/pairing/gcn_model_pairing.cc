@@ -1,4 +1,4 @@
-#include "controllers/gcn_model_pairing.h"
+#include "pairing/gcn_model_pairing.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 
 #include <iomanip>
 #include <sstream>

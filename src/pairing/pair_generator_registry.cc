@@ -1,11 +1,11 @@
-#include "controllers/pair_generator_registry.h"
+#include "pairing/pair_generator_registry.h"
 
 #include "controllers/adaptive_pairing.h"
-#include "controllers/gcn_model_pairing.h"
+#include "pairing/gcn_model_pairing.h"
 #include "controllers/vocab_tree_pairing.h"
-#include "feature/pairing.h"
-#include "feature/sequential_pairing.h"
-#include "retrieval/knn_pairing.h"
+#include "pairing/pairing.h"
+#include "pairing/sequential_pairing.h"
+#include "pairing/knn_pairing.h"
 #include "util/string.h"
 
 namespace colmap_gcn {

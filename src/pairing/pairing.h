@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "feature/pair_generator_spec.h"
+#include "pairing/pair_generator_spec.h"
 #include "scene/database.h"
 #include "util/types.h"
 

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "feature/pair_generator_spec.h"
-#include "feature/pairing.h"
+#include "pairing/pair_generator_spec.h"
+#include "pairing/pairing.h"
 #include "scene/database.h"
 
 namespace colmap_gcn {

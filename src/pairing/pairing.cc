@@ -1,10 +1,10 @@
-#include "feature/pairing.h"
+#include "pairing/pairing.h"
 
 #include <algorithm>
 #include <unordered_map>
 #include <unordered_set>
 
-#include "feature/pairs_io.h"
+#include "pairing/pairs_io.h"
 #include "util/error.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"

@@ -1,10 +1,10 @@
-#include "retrieval/knn_pairing.h"
+#include "pairing/knn_pairing.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "retrieval_test_utils.h"
+#include "../retrieval/retrieval_test_utils.h"
 #include "util/file.h"
 
 namespace colmap_gcn {

@@ -1,4 +1,4 @@
-#include "feature/sequential_pairing.h"
+#include "pairing/sequential_pairing.h"
 
 #include <algorithm>
 #include <memory>

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "feature/pair_generator_spec.h"
+#include "pairing/pair_generator_spec.h"
 #include "gcn/gcn_model.h"
-#include "gcn/gcn_pair_generator.h"
+#include "pairing/gcn_pair_generator.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/knn.h"
 #include "retrieval/vlad.h"

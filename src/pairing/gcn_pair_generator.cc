@@ -1,4 +1,4 @@
-#include "gcn/gcn_pair_generator.h"
+#include "pairing/gcn_pair_generator.h"
 
 #include <algorithm>
 #include <unordered_set>

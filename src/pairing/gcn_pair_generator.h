@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "feature/pairing.h"
+#include "pairing/pairing.h"
 #include "gcn/gcn_model.h"
 #include "retrieval/knn.h"
 #include "util/types.h"

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "feature/pair_generator_spec.h"
-#include "feature/pairing.h"
+#include "pairing/pair_generator_spec.h"
+#include "pairing/pairing.h"
 #include "util/error.h"
 
 namespace colmap_gcn {

@@ -1,4 +1,4 @@
-#include "feature/pairing.h"
+#include "pairing/pairing.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "retrieval/knn_pairing.h"
+#include "pairing/knn_pairing.h"
 
 #include <algorithm>
 #include <unordered_set>
