@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "pairing/pair_generator_registry.h"
+#include "controllers/pair_generators.h"
 #include "controllers/pair_matching.h"
 #include "pairing/pairing.h"
 #include "scene/database.h"

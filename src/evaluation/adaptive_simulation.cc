@@ -6,8 +6,8 @@
 #include <unordered_set>
 
 #include "controllers/adaptive_pairing.h"
-#include "pairing/gcn_model_pairing.h"
 #include "evaluation/collection.h"
+#include "pairing/gcn_model_pairing.h"
 #include "pairing/knn_pairing.h"
 #include "scene/database_copy.h"
 #include "util/error.h"

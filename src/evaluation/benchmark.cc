@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "pairing/pair_generator_registry.h"
+#include "controllers/pair_generators.h"
 #include "evaluation/benchmark_runner.h"
 #include "evaluation/dataset.h"
 #include "evaluation/method.h"

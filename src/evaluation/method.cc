@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "pairing/pair_generator_registry.h"
+#include "controllers/pair_generators.h"
 #include "util/error.h"
 #include "util/string.h"
 

@@ -3,8 +3,8 @@
 #include <vector>
 
 #include "evaluation/labels.h"
-#include "pairing/pairs_io.h"
 #include "math/precision_recall.h"
+#include "pairing/pairs_io.h"
 
 namespace colmap_gcn {
 

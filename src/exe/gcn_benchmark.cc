@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "controllers/gcn_matching.h"
+#include "controllers/pair_generators.h"
 #include "evaluation/benchmark.h"
 #include "evaluation/method.h"
 #include "evaluation/report.h"

@@ -1,6 +1,7 @@
 #include "exe/gcn_matcher.h"
 
 #include "controllers/gcn_matching.h"
+#include "controllers/pair_generators.h"
 #include "util/error.h"
 #include "util/option_manager.h"
 #include "util/string.h"

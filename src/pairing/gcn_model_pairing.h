@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "pairing/pair_generator_spec.h"
 #include "gcn/gcn_model.h"
 #include "pairing/gcn_pair_generator.h"
+#include "pairing/pair_generator_spec.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/knn.h"
 #include "retrieval/vlad.h"

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "pairing/pairing.h"
 #include "gcn/gcn_model.h"
+#include "pairing/pairing.h"
 #include "retrieval/knn.h"
 #include "util/types.h"
 

@@ -1,11 +1,5 @@
 #include "pairing/pair_generator_registry.h"
 
-#include "controllers/adaptive_pairing.h"
-#include "pairing/gcn_model_pairing.h"
-#include "controllers/vocab_tree_pairing.h"
-#include "pairing/pairing.h"
-#include "pairing/sequential_pairing.h"
-#include "pairing/knn_pairing.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -87,23 +81,6 @@ bool PairGeneratorRegistry::TakesDepth(const std::string& name) const {
 
 bool PairGeneratorRegistry::IsBenchmarkMethod(const std::string& name) const {
   return Find(name).benchmark_method;
-}
-
-const PairGeneratorRegistry& PairGenerators() {
-  static const PairGeneratorRegistry registry = [] {
-    PairGeneratorRegistry generators;
-    // One line per generator; the first is the default pairing.
-    generators.Register(GcnModelPairGeneratorSpec());
-    generators.Register(ExhaustivePairGeneratorSpec());
-    generators.Register(ImportedPairGeneratorSpec());
-    generators.Register(KnnPairGeneratorSpec());
-    generators.Register(VocabTreePairGeneratorSpec());
-    generators.Register(SequentialPairGeneratorSpec());
-    generators.Register(AdaptivePairGeneratorSpec());
-    generators.Register(GraphMatchPairGeneratorSpec());
-    return generators;
-  }();
-  return registry;
 }
 
 }  // namespace colmap_gcn

@@ -32,9 +32,10 @@ class PairGeneratorOptions {
   std::map<std::string, std::any> options_;
 };
 
-// The pair generators of this build, by --GcnMatching.pairing name. Each
-// registers once with a PairGeneratorSpec; `gcn_matcher`, `gcn_reconstructor`
-// and `gcn_benchmark` create generators only through it.
+// Pair generators by --GcnMatching.pairing name. Each registers once with a
+// PairGeneratorSpec; PairGenerators() (controllers/pair_generators.h) is the
+// registry of this build, through which `gcn_matcher`, `gcn_reconstructor`
+// and `gcn_benchmark` create generators.
 class PairGeneratorRegistry {
  public:
   template <typename Options>
@@ -86,9 +87,6 @@ class PairGeneratorRegistry {
 
   std::vector<Entry> entries_;
 };
-
-// Every pair generator of this build (pair_generator_registry.cc).
-const PairGeneratorRegistry& PairGenerators();
 
 template <typename Options>
 Options& PairGeneratorOptions::Get(const std::string& name) {

@@ -25,9 +25,10 @@ struct PairGeneratorContext {
   bool verbose = false;
 };
 
-// A pair generator as it registers with PairGenerators()
-// (controllers/pair_generator_registry.h), with its own Options struct
-// (commented defaults, Check()):
+// A pair generator as it registers with a PairGeneratorRegistry
+// (pairing/pair_generator_registry.h; this build's list is PairGenerators()
+// in controllers/pair_generators.h), with its own Options struct (commented
+// defaults, Check()):
 //   name        the --GcnMatching.pairing value;
 //   add_options binds its --GcnMatching.* flags to the fields of *options (a
 //               flag several generators share, such as --GcnMatching.k, is

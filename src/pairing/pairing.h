@@ -1,6 +1,5 @@
 #pragma once
 
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,25 +13,6 @@ namespace colmap_gcn {
 // a generator yields blocks of image pairs until HasFinished(); matchers
 // consume the blocks. Generators here are built from the database's image
 // list (the role of COLMAP's FeatureMatcherCache) so they port directly.
-
-struct ExhaustiveMatchingOptions {
-  // Block size, i.e. number of images whose pairs form one block.
-  int block_size = 50;
-
-  // Throws OptionError naming the first invalid field.
-  void Check() const;
-};
-
-struct ImagePairsMatchingOptions {
-  // Number of image pairs in one block.
-  int block_size = 1225;
-
-  // Path to the pairs file (`name1 name2` per line, COLMAP's format).
-  std::string match_list_path = "";
-
-  // Throws OptionError naming the first invalid field.
-  void Check() const;
-};
 
 // What COLMAP's geometric verification made of one attempted pair, as its
 // two_view_geometries row holds it (no row: config 0, 0 inliers).
@@ -85,55 +65,5 @@ class PairGenerator {
 std::vector<ImagePair> NextPairBlock(const std::vector<ImagePair>& pairs,
                                      int block_size,
                                      size_t* pair_idx);
-
-// All N(N-1)/2 pairs, in blocks of block_size x block_size images.
-class ExhaustivePairGenerator : public PairGenerator {
- public:
-  using PairOptions = ExhaustiveMatchingOptions;
-
-  ExhaustivePairGenerator(const ExhaustiveMatchingOptions& options,
-                          const std::vector<DatabaseImage>& images);
-  ExhaustivePairGenerator(const ExhaustiveMatchingOptions& options,
-                          const Database& database);
-
-  void Reset() override;
-  bool HasFinished() const override;
-  std::vector<ImagePair> Next() override;
-
- private:
-  const ExhaustiveMatchingOptions options_;
-  std::vector<image_t> image_ids_;
-  size_t block_size_;
-  size_t num_blocks_;
-  size_t start_idx1_ = 0;
-  size_t start_idx2_ = 0;
-};
-
-// Pairs read from a pairs file, names resolved against the database. Unknown
-// names are an error that lists them; self-pairs and duplicates (in either
-// order) are dropped, as COLMAP does.
-class ImportedPairGenerator : public PairGenerator {
- public:
-  using PairOptions = ImagePairsMatchingOptions;
-
-  ImportedPairGenerator(const ImagePairsMatchingOptions& options,
-                        const std::vector<DatabaseImage>& images);
-  ImportedPairGenerator(const ImagePairsMatchingOptions& options,
-                        const Database& database);
-
-  void Reset() override;
-  bool HasFinished() const override;
-  std::vector<ImagePair> Next() override;
-
- private:
-  const ImagePairsMatchingOptions options_;
-  std::vector<ImagePair> image_pairs_;
-  size_t pair_idx_ = 0;
-};
-
-// --GcnMatching.pairing exhaustive and imported
-// (--GcnMatching.match_list_path).
-PairGeneratorSpec<ExhaustiveMatchingOptions> ExhaustivePairGeneratorSpec();
-PairGeneratorSpec<ImagePairsMatchingOptions> ImportedPairGeneratorSpec();
 
 }  // namespace colmap_gcn

@@ -9,8 +9,8 @@
 #include <unordered_set>
 
 #include "pairing/gcn_pair_generator.h"
-#include "retrieval/embedding_cache.h"
 #include "pairing/knn_pairing.h"
+#include "retrieval/embedding_cache.h"
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"

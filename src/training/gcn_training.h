@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
-#include "pairing/gcn_model_pairing.h"
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
 #include "math/precision_recall.h"
+#include "pairing/gcn_model_pairing.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/vlad.h"
 #include "training/gcn_trainer.h"

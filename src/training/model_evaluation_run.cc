@@ -2,8 +2,8 @@
 
 #include <fstream>
 
-#include "pairing/gcn_model_pairing.h"
 #include "gcn/model_file.h"
+#include "pairing/gcn_model_pairing.h"
 #include "util/error.h"
 
 namespace colmap_gcn {

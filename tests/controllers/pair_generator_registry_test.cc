@@ -1,4 +1,4 @@
-#include "pairing/pair_generator_registry.h"
+#include "controllers/pair_generators.h"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 
 #include "../retrieval/retrieval_test_utils.h"
 #include "controllers/gcn_matching.h"
-#include "pairing/gcn_model_pairing.h"
 #include "controllers/vocab_tree_pairing.h"
-#include "pairing/pairing.h"
+#include "pairing/gcn_model_pairing.h"
 #include "pairing/knn_pairing.h"
+#include "pairing/pairing.h"
 #include "test_utils.h"
 #include "util/file.h"
 #include "util/option_check.h"

@@ -10,9 +10,9 @@
 #include <set>
 
 #include "e2e_scene.h"
-#include "pairing/pairs_io.h"
 #include "gcn/gcn_model.h"
 #include "gcn/model_file.h"
+#include "pairing/pairs_io.h"
 #include "retrieval/vlad.h"
 #include "scene/database.h"
 #include "scene/database_inspector.h"

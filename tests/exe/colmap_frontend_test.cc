@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "pairing/pair_generator_registry.h"
+#include "controllers/pair_generators.h"
 #include "test_utils.h"
 #include "util/file.h"
 #include "util/string.h"

@@ -1,7 +1,7 @@
 // Fuzzes the pairs-file reader (COLMAP 3.8's `name1 name2` format).
 
-#include "pairing/pairs_io.h"
 #include "fuzz_utils.h"
+#include "pairing/pairs_io.h"
 #include "util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

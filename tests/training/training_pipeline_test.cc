@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "pairing/gcn_pair_generator.h"
 #include "gcn/gcn_test_utils.h"
+#include "pairing/gcn_pair_generator.h"
 #include "training/model_evaluation.h"
 #include "util/error.h"
 #include "util/file.h"

@@ -1,0 +1,30 @@
+#include "controllers/pair_generators.h"
+
+#include "controllers/adaptive_pairing.h"
+#include "controllers/vocab_tree_pairing.h"
+#include "pairing/exhaustive_pairing.h"
+#include "pairing/gcn_model_pairing.h"
+#include "pairing/imported_pairing.h"
+#include "pairing/knn_pairing.h"
+#include "pairing/sequential_pairing.h"
+
+namespace colmap_gcn {
+
+const PairGeneratorRegistry& PairGenerators() {
+  static const PairGeneratorRegistry registry = [] {
+    PairGeneratorRegistry generators;
+    // One line per generator; the first is the default pairing.
+    generators.Register(GcnModelPairGeneratorSpec());
+    generators.Register(ExhaustivePairGeneratorSpec());
+    generators.Register(ImportedPairGeneratorSpec());
+    generators.Register(KnnPairGeneratorSpec());
+    generators.Register(VocabTreePairGeneratorSpec());
+    generators.Register(SequentialPairGeneratorSpec());
+    generators.Register(AdaptivePairGeneratorSpec());
+    generators.Register(GraphMatchPairGeneratorSpec());
+    return generators;
+  }();
+  return registry;
+}
+
+}  // namespace colmap_gcn
