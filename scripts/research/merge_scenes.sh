@@ -43,25 +43,20 @@ done
 
 mkdir -p "$OUT/labels" "$OUT/images"
 DB="$OUT/base.db"
-sqlite3 "$BENCH/$1/base.db" .schema | grep -v sqlite_sequence | sqlite3 "$DB"
+databases=""
+prefixes=""
+for scene in "$@"; do
+  databases="${databases:+$databases,}$BENCH/$scene/base.db"
+  prefixes="${prefixes:+$prefixes,}${scene}__"
+done
+"$COLMAP" gcn_merge_databases --database_paths "$databases" \
+  --name_prefixes "$prefixes" --output_path "$DB" >/dev/null
 LABELS="$OUT/labels/labels.csv"
 PAIRS="$OUT/labels/pairs.tmp"
 echo "# source,collection of $*" >"$LABELS"
 echo "$KINDS" >>"$LABELS"
 : >"$PAIRS"
 for scene in "$@"; do
-  image_offset=$(sqlite3 "$DB" "select coalesce(max(image_id), 0) from images")
-  camera_offset=$(sqlite3 "$DB" "select coalesce(max(camera_id), 0) from cameras")
-  sqlite3 "$DB" "attach '$BENCH/$scene/base.db' as s;
-    insert into cameras select camera_id + $camera_offset, model, width,
-      height, params, prior_focal_length from s.cameras;
-    insert into images select image_id + $image_offset, '${scene}__' || name,
-      camera_id + $camera_offset, prior_qw, prior_qx, prior_qy, prior_qz,
-      prior_tx, prior_ty, prior_tz from s.images;
-    insert into keypoints select image_id + $image_offset, rows, cols, data
-      from s.keypoints;
-    insert into descriptors select image_id + $image_offset, rows, cols, data
-      from s.descriptors;"
   labels="$BENCH/$scene/labels/labels.csv"
   awk -F, -v p="${scene}__" '$1 == "image" { print "image," p $2 }' \
     "$labels" >>"$LABELS"

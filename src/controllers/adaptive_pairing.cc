@@ -10,6 +10,8 @@
 #include "util/logging.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
+#include "util/pair_key.h"
+#include "util/random.h"
 
 namespace colmap_gcn {
 namespace {
@@ -29,13 +31,6 @@ constexpr double kCalibrationPrior = 1.0;
 constexpr double kCalibrationPriorRate = 0.5;
 // Classes of common strong neighbours: 0, 1, 2-3, 4-7, >= 8.
 constexpr int kSupportClasses = 5;
-
-uint64_t SplitMix64(uint64_t* state) {
-  uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
 
 double Logit(double p) {
   const double q = std::clamp(p, 1e-3, 1 - 1e-3);
@@ -67,12 +62,6 @@ double FitLogOddsOffset(const std::vector<double>& logits,
     }
   }
   return 0.5 * (low + high);
-}
-
-uint64_t RowKey(int row1, int row2) {
-  const uint64_t a = static_cast<uint64_t>(std::min(row1, row2));
-  const uint64_t b = static_cast<uint64_t>(std::max(row1, row2));
-  return (a << 32) | b;
 }
 
 }  // namespace
@@ -228,7 +217,7 @@ AdaptivePairGenerator::AdaptivePairGenerator(
                  ")");
     }
     if (it1->second == it2->second) continue;
-    keyed.emplace_back(RowKey(it1->second, it2->second), candidate.score);
+    keyed.emplace_back(PairKey(it1->second, it2->second), candidate.score);
   }
   std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
     return a.first != b.first ? a.first < b.first : a.second > b.second;
@@ -357,7 +346,7 @@ void AdaptivePairGenerator::Observe(
     const auto it1 = rows_.find(verification.image_id1);
     const auto it2 = rows_.find(verification.image_id2);
     if (it1 == rows_.end() || it2 == rows_.end()) continue;
-    const auto it = candidate_index_.find(RowKey(it1->second, it2->second));
+    const auto it = candidate_index_.find(PairKey(it1->second, it2->second));
     if (it == candidate_index_.end()) continue;
     Candidate& candidate = candidates_[it->second];
     if (candidate.state != Candidate::State::kPending) continue;
@@ -681,13 +670,9 @@ std::vector<PairCandidate> GcnModelCandidates(
     const GcnModelPairingOptions& options,
     const Database& database,
     std::vector<image_t>* image_ids) {
-  GcnModelPairingOptions all = options;
-  all.threshold = 0;  // every scored 1-hop pair
-  all.min_pairs_per_image = 0;
-  const std::unique_ptr<GcnPairGenerator> gcn =
-      CreateGcnPairGenerator(all, database);
   std::vector<PairCandidate> candidates;
-  for (const ScoredImagePair& pair : gcn->ScoredPairs()) {
+  for (const ScoredImagePair& pair :
+       ScoreEveryGcnCandidate(options, database)) {
     candidates.push_back({pair.image_id1, pair.image_id2, pair.score});
   }
   image_ids->clear();

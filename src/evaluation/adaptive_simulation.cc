@@ -161,13 +161,12 @@ std::vector<ImagePair> FirstPairs(const std::vector<PairCandidate>& candidates,
 GcnMatchingOptions WithoutCaches(GcnMatchingOptions options) {
   options.generators.Get<AdaptiveGcnPairingOptions>("adaptive")
       .gcn.use_vlad_cache = false;
-  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive")
-      .knn.descriptors.use_cache = false;
-  options.generators.Get<GcnModelPairingOptions>("gcn").use_vlad_cache = false;
-  options.generators.Get<GraphMatchPairingOptions>("graphmatch")
-      .knn.descriptors.use_cache = false;
-  options.generators.Get<KnnPairingOptions>("knn").descriptors.use_cache =
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive").knn.use_cache =
       false;
+  options.generators.Get<GcnModelPairingOptions>("gcn").use_vlad_cache = false;
+  options.generators.Get<GraphMatchPairingOptions>("graphmatch").knn.use_cache =
+      false;
+  options.generators.Get<KnnPairingOptions>("knn").use_cache = false;
   return options;
 }
 

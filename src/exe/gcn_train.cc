@@ -115,8 +115,9 @@ void AddGcnTrainingFlags(OptionManager* manager,
                             "on the validation scenes");
   manager->AddDefaultOption("GcnTraining.seed", &training->seed);
   manager->AddDefaultOption("GcnTraining.num_threads", &training->num_threads);
-  manager->AddDefaultOption(
-      "GcnTraining.embedding", &options->embedding, "vlad | onnx | vlad+onnx");
+  manager->AddEnumOption("GcnTraining.embedding",
+                         &options->embedding,
+                         ComputedEmbeddingTypeNames());
 }
 
 }  // namespace

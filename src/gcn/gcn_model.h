@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "gcn/query_enclosing_subgraph.h"
+#include "retrieval/embedding.h"
 
 namespace colmap_gcn {
 
@@ -136,14 +137,6 @@ class GcnParameters {
   GcnShape shape_;
   GcnParameterLayout layout_;
   std::vector<T> values_;
-};
-
-// Where the embeddings come from. Opaque to the GCN: the retrieval module
-// stores e.g. its VLAD codebook / whitening file bytes in `blob`.
-struct GcnEmbeddingConfig {
-  std::string type;  // e.g. "vlad" or "imported:<name>"
-  int dim = 0;       // descriptor dimension D (== GcnShape::input_dim)
-  std::string blob;
 };
 
 // Training labels and recommended test-time settings stored with a model.

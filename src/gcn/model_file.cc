@@ -3,6 +3,7 @@
 #include <cstring>
 #include <map>
 
+#include "util/binary_io.h"
 #include "util/error.h"
 #include "util/file.h"
 
@@ -21,60 +22,35 @@ bool IsLittleEndian() {
   return byte == 1;
 }
 
-class Writer {
+// A ByteWriter with the model file's tagged sections.
+class Writer : public ByteWriter {
  public:
-  template <typename T>
-  void Put(const T& value) {
-    static_assert(std::is_trivially_copyable<T>::value, "POD only");
-    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
-  }
-  void PutFloats(const float* data, size_t count) {
-    bytes_.append(reinterpret_cast<const char*>(data), count * sizeof(float));
-  }
-  void PutString(const std::string& s) {
-    Put<uint64_t>(s.size());
-    bytes_.append(s);
-  }
   void PutSection(const char tag[4], const std::string& body) {
-    bytes_.append(tag, 4);
+    Bytes().append(tag, 4);
     Put<uint64_t>(body.size());
-    bytes_.append(body);
+    Bytes().append(body);
   }
-  std::string& Bytes() { return bytes_; }
-
- private:
-  std::string bytes_;
 };
 
-class Reader {
+// A ByteReader over one section; running out of it, or a value it cannot
+// hold, is "GCN model file <source>: malformed <what> section".
+class Reader : public ByteReader {
  public:
   Reader(const std::string& bytes,
          size_t begin,
          size_t end,
          const std::string& source,
          const std::string& what)
-      : bytes_(bytes), pos_(begin), end_(end), source_(source), what_(what) {}
+      : ByteReader(
+            bytes,
+            begin,
+            end,
+            [source, what](size_t) {
+              ThrowError(
+                  "GCN model file ", source, ": malformed ", what, " section");
+            }),
+        source_(source) {}
 
-  template <typename T>
-  T Get() {
-    Need(sizeof(T));
-    T value;
-    std::memcpy(&value, bytes_.data() + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return value;
-  }
-  void GetFloats(float* data, size_t count) {
-    if (count > (end_ - pos_) / sizeof(float)) Fail();
-    std::memcpy(data, bytes_.data() + pos_, count * sizeof(float));
-    pos_ += count * sizeof(float);
-  }
-  std::string GetString() {
-    const uint64_t size = Get<uint64_t>();
-    if (size > end_ - pos_) Fail();
-    std::string s = bytes_.substr(pos_, size);
-    pos_ += size;
-    return s;
-  }
   int GetPositiveInt(const char* name, int max_value) {
     const int32_t value = Get<int32_t>();
     if (value <= 0 || value > max_value) {
@@ -89,30 +65,19 @@ class Reader {
     return value;
   }
   void ExpectEnd() {
-    if (pos_ != end_) Fail();
+    if (Remaining() != 0) Fail();
   }
   // Fails unless exactly `count` floats are left, before anything is
   // allocated for them (sizes come from the file).
   void ExpectFloatsLeft(uint64_t count) {
-    if (count != (end_ - pos_) / sizeof(float) ||
-        (end_ - pos_) % sizeof(float) != 0) {
+    if (count != Remaining() / sizeof(float) ||
+        Remaining() % sizeof(float) != 0) {
       Fail();
     }
   }
 
  private:
-  void Need(size_t size) {
-    if (size > end_ - pos_) Fail();
-  }
-  [[noreturn]] void Fail() {
-    ThrowError("GCN model file ", source_, ": malformed ", what_, " section");
-  }
-
-  const std::string& bytes_;
-  size_t pos_;
-  size_t end_;
-  const std::string& source_;
-  std::string what_;
+  std::string source_;
 };
 
 }  // namespace

@@ -21,6 +21,12 @@ void GcnPairingOptions::Check() const {
   CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
+GcnPairingOptions EveryCandidate(GcnPairingOptions options) {
+  options.threshold = 0;
+  options.min_pairs_per_image = 0;
+  return options;
+}
+
 GcnPairingOptions GcnPairingOptionsFromModel(const GcnModel& model) {
   GcnPairingOptions options;
   options.k1 = model.info.test_k1;

@@ -33,6 +33,11 @@ struct GcnPairingOptions {
 // k1, k2, u and threshold recommended by the model file; other fields default.
 GcnPairingOptions GcnPairingOptionsFromModel(const GcnModel& model);
 
+// `options` that keep every candidate the GCN scores (every 1-hop pair of
+// every QES): threshold 0 and no min_pairs_per_image, for callers that rank
+// or cut the scored candidates themselves.
+GcnPairingOptions EveryCandidate(GcnPairingOptions options);
+
 struct ScoredImagePair {
   image_t image_id1 = kInvalidImageId;
   image_t image_id2 = kInvalidImageId;

@@ -11,49 +11,36 @@ namespace colmap_gcn {
 
 void KnnPairingOptions::Check() const {
   CHECK_OPTION_GE(k, 1);
-  descriptors.Check();
-  CHECK_OPTION(embedding,
-               embedding.empty() || embedding == "vlad" ||
-                   embedding == "onnx" || embedding == "vlad+onnx" ||
-                   embedding == "imported",
-               "be empty (vlad, or the imported descriptors) or one of vlad, "
-               "onnx, vlad+onnx, imported");
-  onnx.Check();
-  if (embedding == "onnx" || embedding == "vlad+onnx") {
-    CHECK_OPTION(
-        descriptors.cnn.onnx_path,
-        !descriptors.cnn.onnx_path.empty(),
-        "name the ONNX network when --GcnMatching.embedding is " + embedding);
-    CHECK_OPTION(descriptors.image_path,
-                 !descriptors.image_path.empty(),
-                 "name the image folder (the one given to feature_extractor) "
-                 "when --GcnMatching.embedding is " +
-                     embedding);
-  }
-  if (embedding == "imported") {
-    CHECK_OPTION(descriptors.descriptor_path,
-                 !descriptors.descriptor_path.empty(),
-                 "name the descriptor file when --GcnMatching.embedding is "
-                 "imported");
-  }
+  embedding.Check();
+  vlad.Check();
   CHECK_OPTION_NUM_THREADS(num_threads);
   CHECK_OPTION_GE(block_size, 1);
 }
 
 GlobalDescriptorOptions KnnPairingOptions::Descriptors() const {
-  GlobalDescriptorOptions resolved = descriptors;
-  if (embedding == "imported") {
-    resolved.embedding = "vlad";  // descriptor_path takes over
-  } else if (!embedding.empty()) {
-    if (!descriptors.descriptor_path.empty()) {
+  GlobalDescriptorOptions resolved;
+  resolved.descriptor_path = embedding.descriptor_path;
+  resolved.embedding_path = embedding_path;
+  resolved.vlad = vlad;
+  resolved.image_path = embedding.image_path;
+  resolved.use_cache = use_cache;
+  resolved.num_threads = num_threads;
+  if (embedding.type == EmbeddingType::kDefault ||
+      embedding.type == EmbeddingType::kImported) {
+    resolved.embedding = EmbeddingType::kVlad;  // descriptor_path takes over
+  } else {
+    if (!embedding.descriptor_path.empty()) {
       ThrowError(
           "--GcnMatching.descriptor_path imports descriptors; it cannot be "
           "combined with --GcnMatching.embedding ",
-          embedding);
+          EnumName(EmbeddingTypeNames(), embedding.type));
     }
-    resolved.embedding = embedding;
+    resolved.embedding = embedding.type;
   }
-  resolved.cnn = onnx.ApplyTo(descriptors.cnn);
+  CnnEmbeddingOptions cnn;
+  cnn.onnx_path = embedding.onnx_path;
+  cnn.batch_size = embedding.onnx_batch_size;
+  resolved.cnn = embedding.onnx.ApplyTo(cnn);
   return resolved;
 }
 
@@ -126,22 +113,10 @@ PairGeneratorSpec<KnnPairingOptions> KnnPairGeneratorSpec() {
                               &options->k,
                               "neighbours per image for knn | vocab_tree");
     manager->AddDefaultOption("GcnMatching.embedding_path",
-                              &options->descriptors.embedding_path,
+                              &options->embedding_path,
                               "trained VLAD model (gcn_embedding_trainer); "
                               "empty: trained on this database");
-    manager->AddDefaultOption(
-        "GcnMatching.descriptor_path",
-        &options->descriptors.descriptor_path,
-        "imported global descriptors (.h5 | .npy | .txt)");
-    manager->AddDefaultOption("GcnMatching.embedding", &options->embedding);
-    manager->AddDefaultOption("GcnMatching.onnx_path",
-                              &options->descriptors.cnn.onnx_path);
-    manager->AddDefaultOption("GcnMatching.image_path",
-                              &options->descriptors.image_path);
-    AddCnnEmbeddingOverrideOptions(
-        manager, "GcnMatching.onnx_", &options->onnx);
-    manager->AddDefaultOption("GcnMatching.onnx_batch_size",
-                              &options->descriptors.cnn.batch_size);
+    AddEmbeddingOptions(manager, &options->embedding);
     manager->AddDefaultOption("GcnMatching.num_threads",
                               &options->num_threads,
                               "threads for embedding and kNN (-1: all cores)");

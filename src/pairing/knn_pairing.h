@@ -5,7 +5,7 @@
 
 #include "pairing/pair_generator_spec.h"
 #include "pairing/pairing.h"
-#include "retrieval/cnn_embedding.h"
+#include "retrieval/embedding.h"
 #include "retrieval/global_descriptors.h"
 #include "retrieval/knn.h"
 #include "scene/database.h"
@@ -17,18 +17,21 @@ struct KnnPairingOptions {
   // retrieval with fixed k" baseline.
   int k = 25;
 
-  // Where the global descriptors come from.
-  GlobalDescriptorOptions descriptors;
+  // The embedding flags: type default is vlad, or the imported descriptors
+  // when descriptor_path is set; vlad | onnx | vlad+onnx choose a computed
+  // one (not with descriptor_path); imported needs descriptor_path. Unset
+  // onnx_* keep MobileNetV2's preprocessing (CnnEmbeddingOptions).
+  EmbeddingOptions embedding;
 
-  // The embedding as --GcnMatching.embedding names it: "" keeps
-  // descriptors.embedding (imported descriptors when descriptor_path is
-  // set); vlad | onnx | vlad+onnx replace it; imported takes
-  // descriptors.descriptor_path. Resolved by Descriptors().
-  std::string embedding = "";
+  // A VLAD model trained by `colmap gcn_embedding_trainer`. Empty: train one
+  // on the target database itself (cached as "<database>.gcn-vlad.bin").
+  std::string embedding_path = "";
 
-  // The CNN preprocessing the user set; -1 keeps descriptors.cnn's
-  // (MobileNetV2's).
-  CnnEmbeddingOverrides onnx;
+  // Training options of the self-trained VLAD model.
+  VladOptions vlad;
+
+  // Keep the embeddings (and the self-trained model) beside the database.
+  bool use_cache = true;
 
   // See KnnOptions::method.
   KnnMethod knn_method = KnnMethod::kExact;
@@ -42,8 +45,8 @@ struct KnnPairingOptions {
   // Throws OptionError naming the first invalid field.
   void Check() const;
 
-  // descriptors with embedding and onnx applied. Throws Error when
-  // imported descriptors are combined with a computed embedding.
+  // Where the descriptors come from, resolved from the fields above. Throws
+  // Error when imported descriptors are combined with a computed embedding.
   GlobalDescriptorOptions Descriptors() const;
 };
 
@@ -79,8 +82,8 @@ class KnnPairGenerator : public PairGenerator {
   size_t pair_idx_ = 0;
 };
 
-// --GcnMatching.pairing knn (--GcnMatching.k, embedding_path,
-// descriptor_path, embedding, onnx_path, image_path, onnx_*, num_threads).
+// --GcnMatching.pairing knn (--GcnMatching.k, embedding_path, the embedding
+// flags (AddEmbeddingOptions), num_threads).
 PairGeneratorSpec<KnnPairingOptions> KnnPairGeneratorSpec();
 
 }  // namespace colmap_gcn

@@ -1,7 +1,5 @@
 #include "retrieval/global_descriptors.h"
 
-#include <cstdio>
-
 #include "retrieval/descriptor_import.h"
 #include "retrieval/embedding_cache.h"
 #include "retrieval/hash.h"
@@ -15,7 +13,9 @@ namespace colmap_gcn {
 
 void GlobalDescriptorOptions::Check() const {
   vlad.Check();
-  CHECK_OPTION_ONE_OF(embedding, "vlad", "onnx", "vlad+onnx");
+  CHECK_OPTION(embedding,
+               EmbeddingUsesVlad(embedding) || EmbeddingUsesCnn(embedding),
+               "be vlad, onnx or vlad+onnx");
   cnn.Check();
   CHECK_OPTION_NUM_THREADS(num_threads);
 }
@@ -47,15 +47,6 @@ uint64_t SelfTrainingKey(const Database& database, const VladOptions& options) {
   return key;
 }
 
-std::string Hex(uint64_t value) {
-  char buffer[17];
-  std::snprintf(buffer,
-                sizeof(buffer),
-                "%016llx",
-                static_cast<unsigned long long>(value));
-  return buffer;
-}
-
 }  // namespace
 
 VladEmbedding LoadOrTrainSelfEmbedding(const Database& database,
@@ -65,7 +56,7 @@ VladEmbedding LoadOrTrainSelfEmbedding(const Database& database,
   const std::string key_path = model_path + ".key";
   std::string key;
   if (use_cache) {
-    key = Hex(SelfTrainingKey(database, options));
+    key = FormatChecksum(SelfTrainingKey(database, options));
     if (ExistsFile(model_path) && ExistsFile(key_path) &&
         StringTrim(ReadTextFile(key_path)) == key) {
       try {
@@ -101,7 +92,7 @@ EmbeddingMatrix ComputeGlobalDescriptors(const Database& database,
         image_ids);
   }
   EmbeddingMatrix cnn_embeddings;
-  if (options.embedding != "vlad") {
+  if (EmbeddingUsesCnn(options.embedding)) {
     CnnEmbeddingOptions cnn = options.cnn;
     cnn.num_threads = options.num_threads;
     const CnnNetwork network(cnn);
@@ -112,7 +103,7 @@ EmbeddingMatrix ComputeGlobalDescriptors(const Database& database,
             options.image_path,
             options.use_cache ? DefaultCnnCachePath(database.Path()) : "",
             image_ids));
-    if (options.embedding == "onnx") return cnn_embeddings;
+    if (!EmbeddingUsesVlad(options.embedding)) return cnn_embeddings;
   }
   const VladEmbedding embedding =
       options.embedding_path.empty()
@@ -124,7 +115,7 @@ EmbeddingMatrix ComputeGlobalDescriptors(const Database& database,
       image_ids,
       options.use_cache ? DefaultEmbeddingCachePath(database.Path()) : "",
       options.num_threads);
-  if (options.embedding == "vlad") return vlad_embeddings;
+  if (!EmbeddingUsesCnn(options.embedding)) return vlad_embeddings;
   return ConcatenateEmbeddings(vlad_embeddings, cnn_embeddings);
 }
 

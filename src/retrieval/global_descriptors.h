@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "retrieval/cnn_embedding.h"
+#include "retrieval/embedding.h"
 #include "retrieval/knn.h"
 #include "retrieval/vlad.h"
 #include "scene/database.h"
@@ -25,7 +26,7 @@ struct GlobalDescriptorOptions {
 
   // The embedding when no descriptors are imported: vlad | onnx (a CNN on
   // the image files, centred, no PCA) | vlad+onnx (both, each half).
-  std::string embedding = "vlad";
+  EmbeddingType embedding = EmbeddingType::kVlad;
 
   // The CNN (embedding = onnx | vlad+onnx) and the folder of the images
   // (database names are relative to it), needed to run it.

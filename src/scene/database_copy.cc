@@ -253,7 +253,20 @@ std::string SqlQuote(const std::string& str) {
 }  // namespace
 
 void MergeDatabases(const std::vector<std::string>& database_paths,
-                    const std::string& merged_path) {
+                    const std::string& merged_path,
+                    const std::vector<std::string>& name_prefixes) {
+  if (database_paths.empty()) ThrowError("no database to merge");
+  if (!name_prefixes.empty() && name_prefixes.size() != database_paths.size()) {
+    ThrowError("merging ",
+               database_paths.size(),
+               " databases needs as many name prefixes (got ",
+               name_prefixes.size(),
+               ")");
+  }
+  std::vector<std::string> prefixes = name_prefixes;
+  for (size_t i = prefixes.size(); i < database_paths.size(); ++i) {
+    prefixes.push_back(std::to_string(i) + "/");
+  }
   for (const std::string& path : database_paths) {
     const Database database(path);  // validates
     if (database.Schema() != DatabaseSchema::kColmap38) {
@@ -275,7 +288,8 @@ void MergeDatabases(const std::vector<std::string>& database_paths,
     Exec(db, "PRAGMA journal_mode=DELETE;");
     Exec(db,
          "DELETE FROM matches; DELETE FROM two_view_geometries;"
-         "UPDATE images SET name = '0/' || name;");
+         "UPDATE images SET name = " +
+             SqlQuote(prefixes[0]) + " || name;");
     for (size_t i = 1; i < database_paths.size(); ++i) {
       Exec(db, "ATTACH DATABASE " + SqlQuote(database_paths[i]) + " AS src;");
       Exec(db,
@@ -286,11 +300,12 @@ void MergeDatabases(const std::vector<std::string>& database_paths,
            "INSERT INTO main.cameras SELECT camera_id + (SELECT cam FROM"
            " offsets), model, width, height, params, prior_focal_length"
            " FROM src.cameras;"
-           "INSERT INTO main.images (image_id, name, camera_id) SELECT"
-           " image_id + (SELECT img FROM offsets), '" +
-               std::to_string(i) +
-               "/' || name, camera_id + (SELECT cam FROM offsets)"
-               " FROM src.images;"
+           "INSERT INTO main.images SELECT"
+           " image_id + (SELECT img FROM offsets), " +
+               SqlQuote(prefixes[i]) +
+               " || name, camera_id + (SELECT cam FROM offsets),"
+               " prior_qw, prior_qx, prior_qy, prior_qz, prior_tx, prior_ty,"
+               " prior_tz FROM src.images;"
                "INSERT INTO main.keypoints SELECT image_id + (SELECT img FROM"
                " offsets), rows, cols, data FROM src.keypoints;"
                "INSERT INTO main.descriptors SELECT image_id + (SELECT img"

@@ -53,10 +53,13 @@ std::string CheckDatabaseIntegrity(const std::string& path);
 // survives a power loss; throws Error on failure.
 void SyncFile(const std::string& path);
 
-// One COLMAP 3.8 database at merged_path holding all cameras, images,
-// keypoints and descriptors of the inputs (matches dropped); image names get
-// the prefix "<input index>/" so they stay unique. Throws Error on failure.
+// One COLMAP 3.8 database at merged_path holding all cameras, images (with
+// their pose priors), keypoints and descriptors of the inputs (matches
+// dropped), ids offset past the previous inputs'; image names get the
+// prefix name_prefixes[i] (empty: "<input index>/") so they stay unique.
+// Throws Error on failure.
 void MergeDatabases(const std::vector<std::string>& database_paths,
-                    const std::string& merged_path);
+                    const std::string& merged_path,
+                    const std::vector<std::string>& name_prefixes = {});
 
 }  // namespace colmap_gcn

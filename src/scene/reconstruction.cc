@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "scene/camera_models.h"
+#include "util/binary_io.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/string.h"
@@ -21,48 +22,48 @@ namespace {
 // only target little-endian hosts, so bytes are copied as they are.
 ////////////////////////////////////////////////////////////////////////////////
 
+// A ByteReader over a whole COLMAP binary model file.
 class BinaryReader {
  public:
   explicit BinaryReader(const std::string& path)
-      : path_(path), data_(ReadRequiredFile(path)) {}
+      : path_(path),
+        data_(ReadRequiredFile(path)),
+        reader_(data_, 0, data_.size(), [this](size_t position) {
+          ThrowError("truncated COLMAP model file ",
+                     path_,
+                     " (unexpected end at byte ",
+                     position,
+                     " of ",
+                     data_.size(),
+                     ")");
+        }) {}
+  BinaryReader(const BinaryReader&) = delete;
+  BinaryReader& operator=(const BinaryReader&) = delete;
 
   template <typename T>
   T Read() {
-    static_assert(std::is_trivially_copyable<T>::value, "POD only");
-    Require(sizeof(T));
-    T value;
-    std::memcpy(&value, data_.data() + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return value;
+    return reader_.Get<T>();
   }
 
   // A NUL-terminated string, as COLMAP stores image names.
-  std::string ReadString() {
-    const size_t end = data_.find('\0', pos_);
-    if (end == std::string::npos) {
-      Truncated();
-    }
-    std::string value = data_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    return value;
-  }
+  std::string ReadString() { return reader_.GetCString(); }
 
   // Caps a count read from the file by what the remaining bytes can hold, so
   // a corrupt count fails as truncation instead of a huge allocation.
   size_t ReadCount(const size_t min_element_bytes) {
     const uint64_t count = Read<uint64_t>();
-    if (count > (data_.size() - pos_) / min_element_bytes) {
-      Truncated();
+    if (count > reader_.Remaining() / min_element_bytes) {
+      reader_.Fail();
     }
     return static_cast<size_t>(count);
   }
 
   void ExpectEnd() const {
-    if (pos_ != data_.size()) {
+    if (reader_.Remaining() != 0) {
       ThrowError("malformed COLMAP model file ",
                  path_,
                  ": ",
-                 data_.size() - pos_,
+                 reader_.Remaining(),
                  " unexpected trailing bytes");
     }
   }
@@ -79,25 +80,9 @@ class BinaryReader {
     return ReadTextFile(path);
   }
 
-  void Require(const size_t num_bytes) const {
-    if (data_.size() - pos_ < num_bytes) {
-      Truncated();
-    }
-  }
-
-  [[noreturn]] void Truncated() const {
-    ThrowError("truncated COLMAP model file ",
-               path_,
-               " (unexpected end at byte ",
-               pos_,
-               " of ",
-               data_.size(),
-               ")");
-  }
-
   std::string path_;
   std::string data_;
-  size_t pos_ = 0;
+  ByteReader reader_;
 };
 
 ////////////////////////////////////////////////////////////////////////////////

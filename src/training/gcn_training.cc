@@ -103,13 +103,16 @@ std::vector<LabelledScene> WithoutHeldOutScenes(
 }
 
 void GcnTrainingPipelineOptions::Check() const {
-  CHECK_OPTION_ONE_OF(embedding, "vlad", "onnx", "vlad+onnx");
+  CHECK_OPTION(embedding,
+               EmbeddingUsesVlad(embedding) || EmbeddingUsesCnn(embedding),
+               "be vlad, onnx or vlad+onnx");
   vlad.Check();
   cnn.Check();
-  if (embedding != "vlad") {
+  if (EmbeddingUsesCnn(embedding)) {
     CHECK_OPTION(cnn.onnx_path,
                  !cnn.onnx_path.empty(),
-                 "name the ONNX network when the embedding is " + embedding);
+                 "name the ONNX network when the embedding is " +
+                     EnumName(ComputedEmbeddingTypeNames(), embedding));
     CHECK_OPTION(images.image_root,
                  ExistsDir(images.image_root),
                  "be a folder with one subfolder <scene>/images per scene");
@@ -292,8 +295,8 @@ TrainedEmbedding TrainEmbedding(
     const GcnTrainingPipelineOptions& options) {
   const std::vector<LabelledScene> databases = SceneDatabases(training_scenes);
   TrainedEmbedding trained;
-  trained.use_vlad = options.embedding != "onnx";
-  trained.use_cnn = options.embedding != "vlad";
+  trained.use_vlad = EmbeddingUsesVlad(options.embedding);
+  trained.use_cnn = EmbeddingUsesCnn(options.embedding);
   if (trained.use_vlad) {
     std::vector<std::string> database_paths;
     for (const auto& part : databases) {
@@ -404,9 +407,9 @@ GcnModel TrainGcnModel(const std::vector<LabelledScene>& training_scenes,
   options.Check();
   const TrainedEmbedding embedding = TrainEmbedding(training_scenes, options);
   ModelEmbeddingOptions embedder_options;
-  embedder_options.onnx_path = options.cnn.onnx_path;
+  embedder_options.embedding.onnx_path = options.cnn.onnx_path;
   embedder_options.onnx_flag = "--GcnTraining.onnx_path";
-  embedder_options.onnx_batch_size = options.cnn.batch_size;
+  embedder_options.embedding.onnx_batch_size = options.cnn.batch_size;
   embedder_options.num_threads = options.training.num_threads;
   embedder_options.progress_every = options.cnn.progress_every;
   embedder_options.use_vlad_cache = false;

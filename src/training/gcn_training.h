@@ -6,8 +6,8 @@
 #include "evaluation/labels.h"
 #include "gcn/gcn_model.h"
 #include "math/precision_recall.h"
-#include "pairing/gcn_model_pairing.h"
 #include "retrieval/cnn_embedding.h"
+#include "retrieval/model_embedding.h"
 #include "retrieval/vlad.h"
 #include "training/gcn_trainer.h"
 #include "training/pair_set_scoring.h"
@@ -57,7 +57,7 @@ struct SceneImageOptions {
 struct GcnTrainingPipelineOptions {
   // The model's embedding: vlad | onnx | vlad+onnx (each part L2-normalised
   // and scaled by 1/sqrt(2)).
-  std::string embedding = "vlad";
+  EmbeddingType embedding = EmbeddingType::kVlad;
 
   // The shared VLAD: one codebook + whitening trained on all training
   // databases, stored in the model so inference embeds alike.

@@ -6,18 +6,10 @@
 #include <numeric>
 
 #include "util/error.h"
+#include "util/pair_key.h"
 #include "util/threading.h"
 
 namespace colmap_gcn {
-namespace {
-
-uint64_t PairKey(int i, int j) {
-  const uint64_t a = static_cast<uint64_t>(std::min(i, j));
-  const uint64_t b = static_cast<uint64_t>(std::max(i, j));
-  return (a << 32) | b;
-}
-
-}  // namespace
 
 PrecisionRecall GcnClassificationStats::Scores() const {
   return ComputePrecisionRecall(true_positives,

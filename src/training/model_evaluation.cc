@@ -84,13 +84,13 @@ std::vector<GcnTrainingScene> EmbedScenesForModel(
     const std::string& onnx_path,
     const SceneImageOptions& images,
     const std::string& onnx_flag) {
-  if (model.embedding.type.rfind("imported", 0) == 0) {
+  if (EmbeddingConfigType(model.embedding) == EmbeddingType::kImported) {
     ThrowError("the model uses imported descriptors (",
                model.embedding.type,
                "); only VLAD and CNN models can embed benchmark scenes");
   }
   ModelEmbeddingOptions options;
-  options.onnx_path = onnx_path;
+  options.embedding.onnx_path = onnx_path;
   options.onnx_flag = onnx_flag;
   options.num_threads = num_threads;
   options.use_vlad_cache = false;

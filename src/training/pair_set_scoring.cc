@@ -6,15 +6,11 @@
 #include "pairing/gcn_pair_generator.h"
 #include "pairing/knn_pairing.h"
 #include "util/error.h"
+#include "util/pair_key.h"
 #include "util/threading.h"
 
 namespace colmap_gcn {
 namespace {
-
-uint64_t PairKey(int i, int j) {
-  return (static_cast<uint64_t>(std::min(i, j)) << 32) |
-         static_cast<uint32_t>(std::max(i, j));
-}
 
 std::unordered_set<uint64_t> PairKeys(
     const std::vector<std::pair<int, int>>& pairs) {
@@ -153,9 +149,7 @@ std::vector<std::pair<int, int>> TopKPairs(const EmbeddingMatrix& embeddings,
 std::vector<ScoredRowPair> GcnCandidatePairs(const GcnModel& model,
                                              const GcnTrainingScene& scene,
                                              int num_threads) {
-  GcnPairingOptions options = GcnPairingOptionsFromModel(model);
-  options.threshold = 0;
-  options.min_pairs_per_image = 0;
+  GcnPairingOptions options = EveryCandidate(GcnPairingOptionsFromModel(model));
   options.num_threads = num_threads;
   std::vector<image_t> ids(scene.embeddings.rows());
   for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<image_t>(i + 1);

@@ -150,13 +150,26 @@ void OptionManager::AddEnumOption(const std::string& name,
                                   Enum* option,
                                   const EnumNames<Enum>& names,
                                   const std::string& help) {
+  flags_.emplace_back(option, "--" + name);
+  if (desc_->find_nothrow(name, false) != nullptr) {
+    // Bound before (a flag several structs share): a given value sets this
+    // field too.
+    after_parse_.push_back(
+        [name, option, names](
+            const boost::program_options::variables_map& vmap) {
+          if (vmap.count(name) > 0 && !vmap[name].defaulted()) {
+            *option =
+                ParseEnum(names, vmap[name].as<std::string>(), "--" + name);
+          }
+        });
+    return;
+  }
   std::string* text = &enum_texts_.emplace_back(EnumName(names, *option));
   const std::string choices = EnumChoices(names);
   desc_->add_options()(
       name.c_str(),
       boost::program_options::value<std::string>(text)->default_value(*text),
       (help.empty() ? choices : help + " (" + choices + ")").c_str());
-  flags_.emplace_back(option, "--" + name);
   after_parse_.push_back([name, option, names, text](
                              const boost::program_options::variables_map&) {
     *option = ParseEnum(names, *text, "--" + name);

@@ -150,15 +150,15 @@ TEST(PairGeneratorRegistry, EmbeddingFlagsBindGcnAndKnn) {
   for (std::string& arg : args) argv.push_back(arg.data());
   ASSERT_TRUE(manager.Parse(static_cast<int>(argv.size()), argv.data()));
   const auto& gcn = options.generators.Get<GcnModelPairingOptions>("gcn");
-  EXPECT_EQ(gcn.embedding, "vlad+onnx");
-  EXPECT_EQ(gcn.onnx_path, "net.onnx");
-  EXPECT_EQ(gcn.image_path, "images");
-  EXPECT_EQ(gcn.onnx.max_image_size, 640);
-  EXPECT_EQ(gcn.onnx.gem_p, -1);  // unset: the model's
-  EXPECT_EQ(gcn.onnx_batch_size, 4);
+  EXPECT_EQ(gcn.embedding.type, EmbeddingType::kVladOnnx);
+  EXPECT_EQ(gcn.embedding.onnx_path, "net.onnx");
+  EXPECT_EQ(gcn.embedding.image_path, "images");
+  EXPECT_EQ(gcn.embedding.onnx.max_image_size, 640);
+  EXPECT_EQ(gcn.embedding.onnx.gem_p, -1);  // unset: the model's
+  EXPECT_EQ(gcn.embedding.onnx_batch_size, 4);
   const auto& knn = options.generators.Get<KnnPairingOptions>("knn");
   const GlobalDescriptorOptions descriptors = knn.Descriptors();
-  EXPECT_EQ(descriptors.embedding, "vlad+onnx");
+  EXPECT_EQ(descriptors.embedding, EmbeddingType::kVladOnnx);
   EXPECT_EQ(descriptors.cnn.onnx_path, "net.onnx");
   EXPECT_EQ(descriptors.image_path, "images");
   EXPECT_EQ(descriptors.cnn.max_image_size, 640);
@@ -171,26 +171,31 @@ TEST(PairGeneratorRegistry, EmbeddingFlagsBindGcnAndKnn) {
 
 TEST(PairGeneratorRegistry, KnnEmbeddingChoices) {
   KnnPairingOptions knn;
-  EXPECT_EQ(knn.Descriptors().embedding, "vlad");  // "" keeps the default
-  knn.embedding = "imported";
-  test::ExpectErrorContaining(
-      [&] { knn.Check(); },
-      "descriptors.descriptor_path must name the descriptor file");
-  knn.descriptors.descriptor_path = "x.h5";
+  // default keeps vlad
+  EXPECT_EQ(knn.Descriptors().embedding, EmbeddingType::kVlad);
+  knn.embedding.type = EmbeddingType::kImported;
+  test::ExpectErrorContaining([&] { knn.Check(); },
+                              "descriptor_path must name the descriptor file");
+  knn.embedding.descriptor_path = "x.h5";
   EXPECT_NO_THROW(knn.Check());
-  EXPECT_EQ(knn.Descriptors().embedding, "vlad");  // the import takes over
-  knn.embedding = "onnx";
-  test::ExpectErrorContaining(
-      [&] { knn.Check(); },
-      "descriptors.cnn.onnx_path must name the ONNX network");
-  knn.descriptors.cnn.onnx_path = "net.onnx";
-  knn.descriptors.image_path = "images";
+  // the import takes over
+  EXPECT_EQ(knn.Descriptors().embedding, EmbeddingType::kVlad);
+  EXPECT_EQ(knn.Descriptors().descriptor_path, "x.h5");
+  knn.embedding.type = EmbeddingType::kOnnx;
+  test::ExpectErrorContaining([&] { knn.Check(); },
+                              "onnx_path must name the ONNX network");
+  knn.embedding.onnx_path = "net.onnx";
+  knn.embedding.image_path = "images";
   EXPECT_NO_THROW(knn.Check());
   test::ExpectErrorContaining([&] { knn.Descriptors(); },
                               "cannot be combined with "
                               "--GcnMatching.embedding onnx");
-  knn.embedding = "sift";
-  test::ExpectErrorContaining([&] { knn.Check(); }, "(got \"sift\")");
+  // An unknown name fails where the flag is parsed, once.
+  test::ExpectErrorContaining(
+      [&] {
+        ParseEnum(EmbeddingTypeNames(), "sift", "--GcnMatching.embedding");
+      },
+      "must be one of default|vlad|onnx|vlad+onnx|imported (got \"sift\")");
 }
 
 // Each generator that needs no COLMAP creates from its defaults (imported

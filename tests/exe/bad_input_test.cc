@@ -182,8 +182,8 @@ TEST_F(BadInput, AdaptiveSimulatorNeedsAGeneratorThatUsesVerification) {
 
 TEST_F(BadInput, MatcherUnknownEmbedding) {
   ExpectMatcherError("--GcnMatching.embedding sift",
-                     {"--GcnMatching.embedding must be empty",
-                      "vlad, onnx, vlad+onnx, imported (got \"sift\")"});
+                     {"--GcnMatching.embedding must be one of "
+                      "default|vlad|onnx|vlad+onnx|imported (got \"sift\")"});
 }
 
 TEST_F(BadInput, MatcherOnnxNeedsNetworkAndImages) {

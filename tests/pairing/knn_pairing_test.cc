@@ -73,8 +73,8 @@ TEST(KnnPairGenerator, FromDatabaseWithSelfTrainedVlad) {
   test::CreateDescriptorDatabase(path, images);
   KnnPairingOptions options;
   options.k = 10;  // capped at N - 1: all pairs
-  options.descriptors.vlad.num_words = 4;
-  options.descriptors.use_cache = false;
+  options.vlad.num_words = 4;
+  options.use_cache = false;
   const Database database(path);
   KnnPairGenerator generator(options, database);
   EXPECT_EQ(generator.AllPairs().size(), 10u);

@@ -448,5 +448,40 @@ TEST_F(DatabaseFiles, LockKeepsOtherProcessesOut) {
   EXPECT_EQ(InChildProcess(try_lock), 0);
 }
 
+// The merge of merge_scenes.sh: ids offset past the earlier inputs', names
+// prefixed as asked, pose priors kept, matches dropped.
+TEST(MergeDatabases, OffsetsIdsPrefixesNamesKeepsPriors) {
+  const TemporaryDirectory dir("colmap_gcn_merge");
+  const std::string a = JoinPaths(dir.Path(), "a.db");
+  const std::string b = JoinPaths(dir.Path(), "b.db");
+  CreateDatabase(a, 2);
+  CreateDatabase(b, 3);
+  ExecuteSql(a, kTwoGeometries);
+  ExecuteSql(b, "UPDATE images SET prior_tx = 7 WHERE image_id = 2;");
+  const std::string merged = JoinPaths(dir.Path(), "merged.db");
+  MergeDatabases({a, b}, merged, {"a__", "b__"});
+  EXPECT_EQ(QuerySqlInt(merged, "SELECT COUNT(*) FROM images;"), 5);
+  EXPECT_EQ(QuerySqlInt(merged, "SELECT COUNT(*) FROM cameras;"), 5);
+  EXPECT_EQ(NumGeometries(merged), 0);
+  EXPECT_EQ(QuerySqlInt(merged,
+                        "SELECT image_id FROM images WHERE name = "
+                        "'b__img2.jpg' AND camera_id = 4 AND prior_tx = 7;"),
+            4);
+  EXPECT_EQ(QuerySqlInt(merged,
+                        "SELECT COUNT(*) FROM images WHERE name LIKE 'a__%';"),
+            2);
+  // Without prefixes: "<input index>/".
+  const std::string numbered = JoinPaths(dir.Path(), "numbered.db");
+  MergeDatabases({a, b}, numbered);
+  EXPECT_EQ(QuerySqlInt(numbered,
+                        "SELECT COUNT(*) FROM images WHERE name LIKE '1/%';"),
+            3);
+  ExpectErrorContaining(
+      [&] {
+        MergeDatabases({a, b}, JoinPaths(dir.Path(), "x.db"), {"a__"});
+      },
+      "merging 2 databases needs as many name prefixes (got 1)");
+}
+
 }  // namespace
 }  // namespace colmap_gcn

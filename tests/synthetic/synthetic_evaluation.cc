@@ -4,7 +4,7 @@
 #include <map>
 #include <set>
 
-#include "math/similarity_transform.h"
+#include "evaluation/alignment.h"
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -13,48 +13,28 @@ namespace colmap_gcn {
 
 PoseAlignmentResult AlignToGroundTruth(const Reconstruction& ground_truth,
                                        const Reconstruction& model) {
+  // The one alignment to ground truth (evaluation/alignment.h), in
+  // ground-truth units here.
+  const PoseErrors errors =
+      ComputePoseErrors(model, ground_truth, PoseErrorOptions());
   PoseAlignmentResult result;
-  result.num_gt_images = static_cast<int>(ground_truth.images.size());
-  std::vector<Eigen::Vector3d> gt_centers;
-  for (const auto& [id, image] : ground_truth.images) {
-    gt_centers.push_back(image.ProjectionCenter());
-  }
-  for (size_t i = 0; i < gt_centers.size(); ++i) {
-    for (size_t j = i + 1; j < gt_centers.size(); ++j) {
-      result.scene_size =
-          std::max(result.scene_size, (gt_centers[i] - gt_centers[j]).norm());
-    }
-  }
-  std::vector<Eigen::Vector3d> src;
-  std::vector<Eigen::Vector3d> dst;
-  for (const auto& [id, image] : model.images) {
-    const image_t gt_id = ground_truth.FindImageWithName(image.name);
-    if (gt_id == kInvalidImageId) {
-      continue;
-    }
-    src.push_back(image.ProjectionCenter());
-    dst.push_back(ground_truth.images.at(gt_id).ProjectionCenter());
-  }
-  result.num_registered = static_cast<int>(src.size());
-  if (src.size() < 3) {
+  result.num_gt_images = static_cast<int>(errors.num_gt_images);
+  result.num_registered = static_cast<int>(errors.num_evaluated);
+  result.scene_size = errors.scene_extent;
+  if (errors.num_evaluated < 3) {
     ThrowError("cannot align: only ",
-               src.size(),
+               errors.num_evaluated,
                " model images are in the ground truth");
   }
-  Similarity3d model_to_gt;
-  if (!EstimateSimilarity(src, dst, &model_to_gt)) {
+  if (!errors.aligned) {
     ThrowError("cannot align: the model's camera centres are collinear");
   }
-  result.scale = model_to_gt.scale;
-  std::vector<double> errors;
-  for (size_t i = 0; i < src.size(); ++i) {
-    errors.push_back((model_to_gt.Transform(src[i]) - dst[i]).norm());
-  }
-  std::sort(errors.begin(), errors.end());
-  const size_t n = errors.size();
+  result.scale = errors.model_to_gt.scale;
   result.median_position_error =
-      n % 2 == 1 ? errors[n / 2] : 0.5 * (errors[n / 2 - 1] + errors[n / 2]);
-  result.max_position_error = errors.back();
+      errors.median_position_error * errors.scene_extent;
+  result.max_position_error = *std::max_element(errors.position_errors.begin(),
+                                                errors.position_errors.end()) *
+                              errors.scene_extent;
   return result;
 }
 

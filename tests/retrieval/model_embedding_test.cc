@@ -1,11 +1,11 @@
-#include "pairing/gcn_model_pairing.h"
+#include "retrieval/model_embedding.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 
-#include "../retrieval/retrieval_test_utils.h"
+#include "retrieval_test_utils.h"
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -52,7 +52,8 @@ TEST(ModelEmbedding, ConfigTypesAndDimensions) {
   EXPECT_EQ(both.type, "vlad+onnx");
   EXPECT_EQ(both.dim, 1283);
   // A VLAD model needs nothing else.
-  EXPECT_EQ(ModelEmbedder(v, ModelEmbeddingOptions()).Type(), "vlad");
+  EXPECT_EQ(ModelEmbedder(v, ModelEmbeddingOptions()).Type(),
+            EmbeddingType::kVlad);
 }
 
 TEST(ModelEmbedding, ErrorsNameWhatIsMissingOrDifferent) {
@@ -68,18 +69,19 @@ TEST(ModelEmbedding, ErrorsNameWhatIsMissingOrDifferent) {
   test::ExpectErrorContaining(
       [&] { ModelEmbedder(MakeEmbeddingConfig(&vlad, &cnn), options); },
       "pass it with --GcnMatching.onnx_path");
-  options.embedding = "vlad";
+  options.embedding.type = EmbeddingType::kVlad;
   test::ExpectErrorContaining(
       [&] { ModelEmbedder(MakeEmbeddingConfig(nullptr, &cnn), options); },
       "the GCN model embeds with onnx but --GcnMatching.embedding is vlad");
-  options.embedding = "";
-  options.onnx_path = "/nonexistent/net.onnx";
-  options.onnx.max_image_size = 640;
+  options.embedding.type = EmbeddingType::kDefault;
+  options.embedding.onnx_path = "/nonexistent/net.onnx";
+  options.embedding.onnx.max_image_size = 640;
   test::ExpectErrorContaining(
       [&] { ModelEmbedder(MakeEmbeddingConfig(nullptr, &cnn), options); },
       "the GCN model was trained with --GcnMatching.onnx_max_image_size 512 "
       "but it is 640");
-  options.onnx.max_image_size = 512;  // set to the model's value: accepted
+  options.embedding.onnx.max_image_size =
+      512;  // set to the model's value: accepted
   test::ExpectErrorContaining(
       [&] { ModelEmbedder(MakeEmbeddingConfig(nullptr, &cnn), options); },
       "ONNX network not found: /nonexistent/net.onnx");
@@ -98,7 +100,7 @@ TEST(ModelEmbedding, ErrorsNameWhatIsMissingOrDifferent) {
       [&] { ModelEmbedder(config, ModelEmbeddingOptions()); },
       "pass them with --GcnMatching.descriptor_path");
   options = ModelEmbeddingOptions();
-  options.descriptor_path = "x.h5";
+  options.embedding.descriptor_path = "x.h5";
   test::ExpectErrorContaining(
       [&] { ModelEmbedder(MakeEmbeddingConfig(&vlad, nullptr), options); },
       "need a model trained on them");
@@ -129,7 +131,7 @@ TEST(ModelEmbeddingShared, ConcatenatedRowsAndNetworkChecksum) {
   const CnnEmbeddingModel cnn = MakeCnnEmbeddingModel(CnnNetwork(cnn_options));
   const VladEmbedding vlad = SmallVlad();
   ModelEmbeddingOptions options;
-  options.onnx_path = SharedNetworkPath();
+  options.embedding.onnx_path = SharedNetworkPath();
   options.progress_every = 0;
   options.use_vlad_cache = false;
   const ModelEmbedder embedder(MakeEmbeddingConfig(&vlad, &cnn), options);

@@ -1,0 +1,56 @@
+#include "exe/gcn_merge_databases.h"
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "controllers/gcn_matching.h"
+#include "scene/database.h"
+#include "scene/database_copy.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/option_manager.h"
+#include "util/string.h"
+
+namespace colmap_gcn {
+
+int RunGcnMergeDatabases(int argc, char** argv) {
+  std::string database_paths;
+  std::string name_prefixes;
+  std::string output_path;
+  OptionManager manager(
+      "gcn_merge_databases",
+      "Merges COLMAP 3.8 databases into one (cameras, images, keypoints and "
+      "descriptors; no matches), image names prefixed so they stay unique.");
+  manager.AddRequiredOption(
+      "database_paths", &database_paths, "comma-separated databases");
+  manager.AddRequiredOption(
+      "output_path", &output_path, "merged database (must not exist)");
+  manager.AddDefaultOption("name_prefixes",
+                           &name_prefixes,
+                           "comma-separated image name prefix per database; "
+                           "empty: <index>/");
+  if (!manager.Parse(argc, argv)) {
+    return 0;
+  }
+  const std::vector<std::string> paths = SplitCommaList(database_paths);
+  if (paths.empty()) {
+    ThrowError("--database_paths lists no database");
+  }
+  if (ExistsFile(output_path) || ExistsDir(output_path)) {
+    ThrowError("--output_path ", output_path, " exists");
+  }
+  CheckOutputFolder(output_path);
+  for (const std::string& path : paths) RecoverHotJournal(path);
+  // Written beside the output and renamed to it when complete.
+  const std::string partial = output_path + ".gcn-partial";
+  std::filesystem::remove(partial);
+  MergeDatabases(paths, partial, SplitCommaList(name_prefixes));
+  std::filesystem::rename(partial, output_path);
+  std::cout << Database(output_path).ReadAllImages().size() << " images from "
+            << paths.size() << " database(s) in " << output_path << "\n";
+  return 0;
+}
+
+}  // namespace colmap_gcn
