@@ -37,6 +37,48 @@ std::string CnnCacheHeader() {
   return std::string(reinterpret_cast<const char*>(&kVersion), 4);
 }
 
+// Writes the rows of images [0, done) and, in interim writes (done < all),
+// the entries of the old cache not reached yet.
+void WriteCnnCache(const std::string& cache_path,
+                   const int dim,
+                   const std::vector<uint64_t>& keys,
+                   const FloatMatrix& descriptors,
+                   const size_t done,
+                   const KeyedRows& cache) {
+  std::vector<std::pair<uint64_t, const float*>> rows;
+  for (size_t i = 0; i < done; ++i) {
+    rows.emplace_back(keys[i], descriptors.row(i).data());
+  }
+  if (done < keys.size()) {
+    std::unordered_map<uint64_t, bool> present;
+    for (size_t i = 0; i < done; ++i) present[keys[i]] = true;
+    for (const auto& [key, row] : cache) {
+      if (!present.count(key)) rows.emplace_back(key, row.data());
+    }
+  }
+  WriteKeyedRowFile(cache_path,
+                    kCacheMagic,
+                    CnnCacheHeader(),
+                    dim,
+                    rows,
+                    "CNN embedding cache");
+}
+
+void LogCnnProgress(const size_t done,
+                    const size_t num_images,
+                    const size_t num_cached,
+                    const double seconds) {
+  char line[160];
+  std::snprintf(line,
+                sizeof(line),
+                "CNN embedding: %zu/%zu images (%zu cached), %.1f s",
+                done,
+                num_images,
+                num_cached,
+                seconds);
+  LOG(INFO) << line;
+}
+
 }  // namespace
 
 FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
@@ -74,24 +116,7 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
   const size_t chunk_size =
       static_cast<size_t>(std::max(8, 4 * num_threads * options.batch_size));
   auto write_cache = [&](size_t done) {
-    std::vector<std::pair<uint64_t, const float*>> rows;
-    for (size_t i = 0; i < done; ++i) {
-      rows.emplace_back(keys[i], descriptors.row(i).data());
-    }
-    // Entries of images not reached yet survive interim writes.
-    if (done < images.size()) {
-      std::unordered_map<uint64_t, bool> present;
-      for (size_t i = 0; i < done; ++i) present[keys[i]] = true;
-      for (const auto& [key, row] : cache) {
-        if (!present.count(key)) rows.emplace_back(key, row.data());
-      }
-    }
-    WriteKeyedRowFile(cache_path,
-                      kCacheMagic,
-                      CnnCacheHeader(),
-                      dim,
-                      rows,
-                      "CNN embedding cache");
+    WriteCnnCache(cache_path, dim, keys, descriptors, done, cache);
   };
   // Images [0, done) have their descriptors.
   size_t done = 0;
@@ -144,15 +169,8 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
       if (options.progress_every > 0 &&
           (end >= next_progress || end == images.size())) {
         while (next_progress <= end) next_progress += options.progress_every;
-        char line[160];
-        std::snprintf(line,
-                      sizeof(line),
-                      "CNN embedding: %zu/%zu images (%zu cached), %.1f s",
-                      end,
-                      images.size(),
-                      local_stats.num_cached,
-                      timer.ElapsedSeconds());
-        LOG(INFO) << line;
+        LogCnnProgress(
+            end, images.size(), local_stats.num_cached, timer.ElapsedSeconds());
       }
       if (!cache_path.empty() && local_stats.num_computed > 0 &&
           end < images.size() && timer.ElapsedSeconds() - last_write > 30) {

@@ -4,22 +4,14 @@
 
 #include <set>
 
+#include "pairing/pairing_test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
 namespace {
 
-std::vector<DatabaseImage> MakeImages(const std::vector<image_t>& ids) {
-  std::vector<DatabaseImage> images;
-  for (const image_t id : ids) {
-    DatabaseImage image;
-    image.image_id = id;
-    image.name = "img" + std::to_string(id) + ".jpg";
-    images.push_back(image);
-  }
-  return images;
-}
+using test::MakeImages;
 
 TEST(ExhaustivePairGenerator, EveryPairOnceForAnyBlockSize) {
   // Ids deliberately unordered and non-contiguous, as databases have them.
