@@ -23,7 +23,7 @@
 #include <benchmark/benchmark.h>
 
 #include "gcn/gcn_inference.h"
-#include "gcn/gcn_pair_generator.h"
+#include "pairing/gcn_pair_generator.h"
 #include "gcn_benchmark_data.h"
 #include "math/sgemm.h"
 #include "training/gcn_network.h"

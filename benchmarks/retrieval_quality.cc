@@ -19,7 +19,7 @@
 #include "evaluation/metrics.h"
 #include "evaluation/pair_labels.h"
 #include "retrieval/global_descriptors.h"
-#include "retrieval/knn_pairing.h"
+#include "pairing/knn_pairing.h"
 #include "scene/database.h"
 #include "util/error.h"
 #include "util/file.h"
