@@ -31,7 +31,7 @@ step() {  # step <title> <command...>: runs it, prints its time
 in_root() { chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin \
   DEBIAN_FRONTEND=noninteractive LANG=C.UTF-8 bash -c "$1"; }
 cleanup() {
-  for mount in "$root/dev" "$root/proc"; do
+  for mount in "$root/dev/pts" "$root/dev" "$root/proc"; do
     mountpoint -q "$mount" && umount -l "$mount"
   done
   return 0
@@ -50,6 +50,7 @@ rm -rf "$root"
 step "fresh copy of the clean root" cp -a "$base" "$root"
 mount -t proc proc "$root/proc"
 mount --bind /dev "$root/dev"
+mount --bind /dev/pts "$root/dev/pts"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 cp "$deb" "$root/root/"
 name="$(basename "$deb")"

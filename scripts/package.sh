@@ -16,6 +16,9 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
     -DCOLMAP_GCN_BUILD_TESTS=OFF -DCOLMAP_GCN_BUILD_BENCHMARKS=OFF \
     "${launcher[@]}" >/dev/null
 fi
+# CPack installs without building every target first (tests, benchmarks):
+# the package holds the front end only, built here.
+cmake -S . -B "$build" -DCMAKE_SKIP_INSTALL_ALL_DEPENDENCY=ON >/dev/null
 cmake --build "$build" -j"$(nproc)" --target colmap
 # dpkg-shlibdeps (package dpkg-dev) derives the library dependencies.
 command -v dpkg-shlibdeps >/dev/null ||

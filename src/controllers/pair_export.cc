@@ -50,11 +50,28 @@ void PairExportOptions::Check() const {
   CheckOutputFolder(output_path);
 }
 
+namespace {
+
+[[noreturn]] void ThrowChosenByVerification(const std::string& pairing) {
+  ThrowError("--GcnMatching.pairing ",
+             pairing,
+             " chooses pairs from COLMAP's verification round by round; "
+             "run gcn_matcher, then export its pairs file with "
+             "--GcnMatching.pairing imported");
+}
+
+}  // namespace
+
 size_t ExportPairs(const std::string& database_path,
                    const GcnMatchingOptions& options,
                    const PairExportOptions& export_options) {
   options.Check();
   export_options.Check();
+  // Known before minutes of embedding; the check after creating the
+  // generator covers any other such generator.
+  if (options.pairing == "adaptive" || options.pairing == "graphmatch") {
+    ThrowChosenByVerification(options.pairing);
+  }
   if (!ExistsFile(database_path)) {
     ThrowError("database not found: ", database_path);
   }
@@ -69,11 +86,7 @@ size_t ExportPairs(const std::string& database_path,
   std::unique_ptr<PairGenerator> generator =
       CreatePairGenerator(options, database);
   if (generator->UsesVerification()) {
-    ThrowError("--GcnMatching.pairing ",
-               options.pairing,
-               " chooses pairs from COLMAP's verification round by round; "
-               "run gcn_matcher, then export its pairs file with "
-               "--GcnMatching.pairing imported");
+    ThrowChosenByVerification(options.pairing);
   }
   const std::vector<ImagePair> pairs = generator->AllPairs();
   const std::string warning = generator->Warning();

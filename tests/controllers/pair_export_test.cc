@@ -4,8 +4,8 @@
 
 #include <set>
 
+#include "../retrieval/retrieval_test_utils.h"
 #include "feature/pairs_io.h"
-#include "retrieval_test_utils.h"
 #include "test_utils.h"
 #include "util/file.h"
 #include "util/string.h"

@@ -35,26 +35,51 @@ OptionDefaults HelpOptions(const std::string& help) {
   return options;
 }
 
-// Section "## `colmap <command>`" -> its rows "| `--name` | default | ...":
-// a default in backticks is the default; anything else means none.
+// Section "## `colmap <command>`" -> its rows "| `--name` | default | ...",
+// plus the rows of the option groups ("## Options: <group>") it links to
+// ("(#options-<group>)"): a default in backticks is the default; anything
+// else means none.
 std::map<std::string, OptionDefaults> UsageDoc(const std::string& text) {
-  static const std::regex kSection(R"(^## `colmap (\S+)`)");
+  static const std::regex kCommand(R"(^## `colmap (\S+)`)");
+  static const std::regex kGroup(R"(^## Options: (.+))");
   static const std::regex kRow(R"(^\| `--([^`]+)` \| ([^|]*)\|)");
-  std::map<std::string, OptionDefaults> doc;
+  static const std::regex kLink(R"(\(#(options-[a-z0-9-]+)\))");
+  std::map<std::string, OptionDefaults> commands;
+  std::map<std::string, OptionDefaults> groups;
+  std::map<std::string, std::vector<std::string>> links;
   OptionDefaults* section = nullptr;
+  std::string command;
   for (const std::string& line : StringSplit(text, "\n")) {
     std::smatch match;
-    if (std::regex_search(line, match, kSection)) {
-      section = &doc[match[1].str()];
+    if (std::regex_search(line, match, kCommand)) {
+      command = match[1].str();
+      section = &commands[command];
+    } else if (std::regex_search(line, match, kGroup)) {
+      command.clear();
+      std::string anchor = "options-" + match[1].str();
+      std::replace(anchor.begin(), anchor.end(), ' ', '-');
+      section = &groups[anchor];
     } else if (section != nullptr && std::regex_search(line, match, kRow)) {
       const std::string cell = StringTrim(match[2].str());
       const bool quoted =
           cell.size() >= 2 && cell.front() == '`' && cell.back() == '`';
       (*section)[match[1].str()] =
           quoted ? cell.substr(1, cell.size() - 2) : kNoDefault;
+    } else if (!command.empty()) {
+      for (auto it = std::sregex_iterator(line.begin(), line.end(), kLink);
+           it != std::sregex_iterator();
+           ++it) {
+        links[command].push_back((*it)[1].str());
+      }
     }
   }
-  return doc;
+  for (const auto& [name, anchors] : links) {
+    for (const std::string& anchor : anchors) {
+      EXPECT_EQ(groups.count(anchor), 1u) << "no group for #" << anchor;
+      for (const auto& row : groups[anchor]) commands[name].insert(row);
+    }
+  }
+  return commands;
 }
 
 std::string Row(const std::string& name, const std::string& value) {
