@@ -25,6 +25,7 @@ command -v dpkg-shlibdeps >/dev/null ||
   { echo "package.sh: dpkg-shlibdeps missing (apt-get install dpkg-dev)" >&2; exit 1; }
 dist="$PWD/dist"
 mkdir -p "$dist"
+rm -rf "$dist/_CPack_Packages"
 (cd "$build" && cpack -G DEB -B "$dist" >/dev/null)
 rm -rf dist/_CPack_Packages
 deb=$(ls -t dist/colmap-gcn_*.deb | head -1)
