@@ -62,8 +62,8 @@ struct GcnModelPairingOptions {
 
 // The model `gcn_matcher` uses when none is given: $COLMAP_GCN_MODEL, else
 // the one installed with the front end (<prefix>/share/colmap-gcn/ for
-// <prefix>/lib/colmap-gcn/colmap), else the one in the source tree (colmap_gcn/models/default.gcnmodel). Empty if
-// there is none.
+// <prefix>/lib/colmap-gcn/colmap), else the one in the source tree
+// (colmap_gcn/models/default.gcnmodel). Empty if there is none.
 std::string DefaultGcnModelPath();
 
 // What embedding a model's images needs beyond the model file
