@@ -16,6 +16,7 @@
 #include "util/file.h"
 #include "util/interrupt.h"
 #include "util/logging.h"
+#include "util/option_manager.h"
 #include "util/string.h"
 
 extern char** environ;
@@ -135,6 +136,47 @@ std::string FindColmapExecutable(const std::string& hint) {
   ThrowError(
       "COLMAP not found: install it (scripts/install_deps.sh) or set "
       "COLMAP_EXE to the real colmap binary");
+}
+
+void CheckColmapArguments(const std::vector<std::string>& args,
+                          const std::string& colmap_exe) {
+  struct ColmapCommand {
+    const char* name;
+    std::vector<std::string> prefixes;
+  };
+  const ColmapCommand kCommands[] = {
+      {"feature_extractor", {"ImageReader.", "SiftExtraction."}},
+      {"matches_importer", {"SiftMatching."}},
+      {"mapper", {"Mapper."}},
+  };
+  for (const ColmapCommand& command : kCommands) {
+    std::vector<std::string> check =
+        ArgumentsWithPrefix(args, command.prefixes);
+    if (check.empty()) continue;
+    check.insert(check.begin(), command.name);
+    check.push_back("-h");
+    std::string output;
+    if (RunProcess(FindColmapExecutable(colmap_exe), check, &output) == 0) {
+      continue;
+    }
+    std::string reason = "exit status != 0";
+    for (const std::string& line : StringSplit(output, "\n")) {
+      const size_t error = line.find("ERROR: ");
+      if (error == std::string::npos) continue;
+      reason = line.substr(error + 7);
+      for (const char* noise :
+           {"Failed to parse options - ", "Failed to parse options "}) {
+        if (StringStartsWith(reason, noise)) {
+          reason = reason.substr(std::strlen(noise));
+        }
+      }
+      break;
+    }
+    ThrowError("COLMAP's ",
+               command.name,
+               " rejects its options: ",
+               StringTrim(reason));
+  }
 }
 
 std::vector<std::string> HeadlessArguments(

@@ -62,6 +62,15 @@ class ColmapRunner {
 // uncaught C++ exceptions.
 std::string DiagnoseColmapOutput(const std::string& output);
 
+// Asks COLMAP to parse the options meant for it before anything runs:
+// `colmap <command> <options> -h` parses them and exits. ImageReader.* and
+// SiftExtraction.* go to feature_extractor, SiftMatching.* to
+// matches_importer, Mapper.* to mapper. Throws Error naming the option COLMAP
+// rejects (an unknown name, a malformed value). COLMAP is looked for
+// (FindColmapExecutable(colmap_exe)) only when args hold such options.
+void CheckColmapArguments(const std::vector<std::string>& args,
+                          const std::string& colmap_exe = "");
+
 // The arguments COLMAP 3.8 needs to run `command` without a GPU/display,
 // unless args already set them.
 std::vector<std::string> HeadlessArguments(

@@ -16,6 +16,7 @@
 #include "exe/gcn_matcher.h"
 #include "exe/gcn_merge_databases.h"
 #include "exe/gcn_model_evaluator.h"
+#include "exe/gcn_pair_exporter.h"
 #include "exe/gcn_reconstructor.h"
 #include "exe/gcn_synth.h"
 #include "exe/gcn_train.h"
@@ -32,6 +33,7 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
   std::vector<std::pair<std::string, Command>> commands;
   commands.emplace_back("gcn_matcher", &RunGcnMatcher);
   commands.emplace_back("gcn_reconstructor", &RunGcnReconstructor);
+  commands.emplace_back("gcn_pair_exporter", &RunGcnPairExporter);
   commands.emplace_back("gcn_synth", &RunGcnSynth);
   commands.emplace_back("gcn_train", &RunGcnTrain);
   commands.emplace_back("gcn_model_evaluator", &RunGcnModelEvaluator);
@@ -68,6 +70,12 @@ int PrintHelp(int argc, char** argv) {
 }
 
 }  // namespace
+
+std::vector<std::string> GcnCommandNames() {
+  std::vector<std::string> names;
+  for (const auto& command : OurCommands()) names.push_back(command.first);
+  return names;
+}
 
 int RunColmapFrontend(int argc, char** argv) {
   try {

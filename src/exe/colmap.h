@@ -1,6 +1,12 @@
 #pragma once
 
+#include <string>
+#include <vector>
+
 namespace colmap_gcn {
+
+// Our commands (gcn_*), in the order `colmap help` lists them.
+std::vector<std::string> GcnCommandNames();
 
 // The `colmap` front end: runs our commands (gcn_*) and hands every other
 // command to the real COLMAP with arguments and exit code unchanged.

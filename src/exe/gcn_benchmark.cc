@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iostream>
 
+#include "controllers/colmap_runner.h"
 #include "controllers/gcn_matching.h"
 #include "controllers/pair_generators.h"
 #include "evaluation/benchmark.h"
@@ -117,6 +118,7 @@ int RunGcnBenchmark(int argc, char** argv) {
   options.mapper_args = ArgumentsWithPrefix(args, {"Mapper."});
   CheckNoMethodFlags(manager, &options.gcn_matching);
   manager.Check([&] { options.Check(); });
+  CheckColmapArguments(args, options.colmap_exe);
   std::vector<std::string> command = {"colmap"};
   for (int i = 0; i < argc; ++i) command.push_back(ShellQuote(argv[i]));
   options.command = StringJoin(command, " ");

@@ -1,5 +1,6 @@
 #include "exe/gcn_matcher.h"
 
+#include "controllers/colmap_runner.h"
 #include "controllers/gcn_matching.h"
 #include "controllers/pair_generators.h"
 #include "util/error.h"
@@ -48,6 +49,7 @@ int RunGcnMatcher(int argc, char** argv) {
   }
   options.colmap_args = manager.PassThroughArguments();
   manager.Check([&] { options.Check(); });
+  CheckColmapArguments(options.colmap_args);
   PrintGcnMatchingReport(RunGcnMatching(database_path, options));
   return 0;
 }

@@ -52,6 +52,8 @@ int RunGcnReconstructor(int argc, char** argv) {
     CHECK_OPTION_NUM_THREADS(mapping_options.num_threads);
     CHECK_OPTION_GE(mapping_options.min_model_size, 0);
   });
+  // COLMAP's own options are checked by COLMAP before anything runs.
+  CheckColmapArguments(manager.PassThroughArguments());
   CheckImageFolder(image_path);
   CheckOutputFolder(matching_options.matching.colmap_log_path);
   CheckOutputFolder(matching_options.matching.pairs_path);

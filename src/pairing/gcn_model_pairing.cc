@@ -10,6 +10,7 @@
 #include "retrieval/embedding_cache.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -37,7 +38,8 @@ std::string DefaultGcnModelPath() {
   const std::string kName = "default.gcnmodel";
   if (!ec) {
     const std::string installed =
-        (exe.parent_path().parent_path() / "share" / "colmap-gcn" / kName)
+        (exe.parent_path() / COLMAP_GCN_DATA_FROM_FRONTEND / kName)
+            .lexically_normal()
             .string();
     if (ExistsFile(installed)) return installed;
   }
@@ -97,6 +99,7 @@ std::unique_ptr<GcnPairGenerator> CreateGcnPairGenerator(
         "gcn_train) or choose another --GcnMatching.pairing");
   }
   const GcnModel model = ReadGcnModel(model_path);
+  LOG(INFO) << "GCN model " << model_path;
   GcnPairingOptions pairing = GcnPairingOptionsFromModel(model);
   if (options.k1 > 0) pairing.k1 = options.k1;
   if (options.k2 > 0) pairing.k2 = options.k2;

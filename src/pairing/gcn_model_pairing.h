@@ -50,9 +50,9 @@ struct GcnModelPairingOptions {
 };
 
 // The model `gcn_matcher` uses when none is given: $COLMAP_GCN_MODEL, else
-// the one installed beside the front end (../share/colmap-gcn/), else the
-// one in the source tree (colmap_gcn/models/default.gcnmodel). Empty if
-// there is none.
+// the one installed with the front end (<prefix>/share/colmap-gcn/ for
+// <prefix>/lib/colmap-gcn/colmap), else the one in the source tree
+// (colmap_gcn/models/default.gcnmodel). Empty if there is none.
 std::string DefaultGcnModelPath();
 
 // The global descriptors the model was trained on, one row per database

@@ -4,10 +4,12 @@
 #include <climits>
 #include <cstdlib>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "util/error.h"
 #include "util/option_check.h"
+#include "util/project_file.h"
 #include "util/string.h"
 
 namespace colmap_gcn {
@@ -20,6 +22,10 @@ OptionManager::OptionManager(const std::string& command,
       summary_(summary),
       desc_(std::make_unique<po::options_description>("Options")) {
   desc_->add_options()("help,h", "Print this help and exit.");
+  desc_->add_options()("project_path",
+                       po::value<std::string>(),
+                       "ini file of options (key=value lines, [Section] "
+                       "headers for Section.key); the command line wins");
 }
 
 void OptionManager::AddPassThroughPrefix(const std::string& prefix) {
@@ -37,12 +43,57 @@ std::string OptionManager::Help() const {
   return help.str();
 }
 
+bool OptionManager::IsPassedThrough(const std::string& name) const {
+  for (const auto& prefix : pass_through_prefixes_) {
+    if (StringStartsWith(name, prefix)) return true;
+  }
+  return false;
+}
+
+void OptionManager::AppendProjectFile(std::vector<std::string>* args) const {
+  const std::string path = FindArgument(*args, "project_path");
+  if (path.empty()) return;
+  // The options given on the command line (abbreviations resolved) win.
+  std::set<std::string> given;
+  for (const std::string& arg : *args) {
+    if (!StringStartsWith(arg, "--")) continue;
+    const std::string name = arg.substr(2, arg.find('=') - 2);
+    const po::option_description* option = nullptr;
+    try {
+      option = desc_->find_nothrow(name, /*approx=*/true);
+    } catch (const po::error&) {
+    }
+    given.insert(option != nullptr ? option->long_name() : name);
+  }
+  for (const ProjectFileOption& option : ReadProjectFile(path)) {
+    const bool ours = option.name != "help" && option.name != "project_path" &&
+                      desc_->find_nothrow(option.name, false) != nullptr;
+    if (!ours && !IsPassedThrough(option.name)) {
+      ThrowError(path,
+                 ":",
+                 option.line,
+                 ": unknown option ",
+                 option.name,
+                 " for colmap ",
+                 command_,
+                 " (see colmap ",
+                 command_,
+                 " -h)");
+    }
+    if (given.count(option.name) > 0) continue;
+    args->push_back("--" + option.name);
+    args->push_back(option.value);
+  }
+}
+
 bool OptionManager::Parse(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  AppendProjectFile(&args);
   // Split off the pass-through options first: boost would reject them.
   std::vector<std::string> ours;
   pass_through_.clear();
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
     // A COLMAP option a command binds itself (typed, checked once here) is
     // ours although its prefix is passed through.
     const bool bound = StringStartsWith(arg, "--") &&
@@ -52,8 +103,8 @@ bool OptionManager::Parse(int argc, char** argv) {
     for (const auto& prefix : pass_through_prefixes_) {
       if (!bound && StringStartsWith(arg, "--" + prefix)) {
         pass_through_.push_back(arg);
-        if (arg.find('=') == std::string::npos && i + 1 < argc) {
-          pass_through_.push_back(argv[++i]);
+        if (arg.find('=') == std::string::npos && i + 1 < args.size()) {
+          pass_through_.push_back(args[++i]);
         }
         passed = true;
         break;

@@ -1,10 +1,14 @@
 #pragma once
 
 #include <functional>
+#include <iomanip>
+#include <limits>
 #include <list>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -58,7 +62,9 @@ class OptionManager {
     return pass_through_;
   }
 
-  // Parses argv[1..]. Returns false when help was requested (it has been
+  // Parses argv[1..], then the options of `--project_path file.ini` (in
+  // COLMAP's layout, util/project_file.h) that argv does not give. Returns
+  // false when help was requested (it has been
   // printed; the command should exit 0). Throws Error on unknown, missing or
   // malformed options.
   bool Parse(int argc, char** argv);
@@ -80,6 +86,12 @@ class OptionManager {
   std::string FlagName(const void* field) const;
 
  private:
+  bool IsPassedThrough(const std::string& name) const;
+  // Appends the options of the --project_path file not given in args;
+  // throws Error "<file>:<line>: unknown option ..." for a key that is
+  // neither bound nor under a pass-through prefix.
+  void AppendProjectFile(std::vector<std::string>* args) const;
+
   std::string command_;
   std::string summary_;
   std::unique_ptr<boost::program_options::options_description> desc_;
@@ -101,6 +113,18 @@ class OptionManager {
 std::vector<std::string> ArgumentsWithPrefix(
     const std::vector<std::string>& args,
     const std::vector<std::string>& prefixes);
+
+// A default as -h prints it: floating-point values with the digits their
+// type holds (0.1, not 0.10000000000000001).
+template <typename T>
+std::string DefaultText(const T& value) {
+  std::ostringstream text;
+  if constexpr (std::is_floating_point_v<T>) {
+    text << std::setprecision(std::numeric_limits<T>::digits10);
+  }
+  text << value;
+  return text.str();
+}
 
 template <typename T>
 void OptionManager::AddRequiredOption(const std::string& name,
@@ -127,10 +151,10 @@ void OptionManager::AddDefaultOption(const std::string& name,
         });
     return;
   }
-  desc_->add_options()(
-      name.c_str(),
-      boost::program_options::value<T>(option)->default_value(*option),
-      help.c_str());
+  desc_->add_options()(name.c_str(),
+                       boost::program_options::value<T>(option)->default_value(
+                           *option, DefaultText(*option)),
+                       help.c_str());
 }
 
 template <typename T>

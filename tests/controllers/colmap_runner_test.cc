@@ -111,5 +111,37 @@ TEST(ColmapRunner, RejectsAProgramThatIsNotColmap) {
   EXPECT_THROW(ColmapRunner runner(options), Error);
 }
 
+// COLMAP itself parses the options meant for it, before anything runs.
+TEST(CheckColmapArguments, ColmapRejectsMisspeltAndMalformedOptions) {
+  if (test::RealColmapExe().empty()) GTEST_SKIP() << "COLMAP not installed";
+  CheckColmapArguments({"--SiftExtraction.max_num_features",
+                        "2048",
+                        "--ImageReader.camera_model",
+                        "PINHOLE",
+                        "--SiftMatching.max_ratio=0.7",
+                        "--Mapper.ba_refine_focal_length",
+                        "0"});
+  ExpectErrorContaining(
+      [] {
+        CheckColmapArguments({"--SiftExtraction.max_num_featurez", "5"});
+      },
+      "COLMAP's feature_extractor rejects its options: unrecognised option "
+      "'--SiftExtraction.max_num_featurez'");
+  ExpectErrorContaining(
+      [] {
+        CheckColmapArguments({"--SiftMatching.max_ratio", "abc"});
+      },
+      "COLMAP's matches_importer rejects its options");
+  ExpectErrorContaining(
+      [] { CheckColmapArguments({"--Mapper.no_such_option=1"}); },
+      "COLMAP's mapper rejects its options: unrecognised option "
+      "'--Mapper.no_such_option");
+}
+
+// Nothing for COLMAP: COLMAP is not even looked for.
+TEST(CheckColmapArguments, NoColmapOptionsNeedNoColmap) {
+  CheckColmapArguments({}, "/nonexistent/colmap");
+}
+
 }  // namespace
 }  // namespace colmap_gcn

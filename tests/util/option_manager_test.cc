@@ -182,5 +182,19 @@ TEST(ArgumentsWithPrefix, SelectsOptionsWithTheirValues) {
   EXPECT_TRUE(ArgumentsWithPrefix(args, {"GcnMatching."}).empty());
 }
 
+// -h shows defaults as typed, not with binary rounding noise.
+TEST(OptionManager, HelpShowsShortestFloatingPointDefaults) {
+  double fraction = 0.1;
+  float ratio = 0.8f;
+  OptionManager manager("test", "summary");
+  manager.AddDefaultOption("GcnMatching.fraction", &fraction);
+  manager.AddDefaultOption("GcnMatching.ratio", &ratio);
+  const std::string help = manager.Help();
+  EXPECT_NE(help.find("--GcnMatching.fraction arg (=0.1)"), std::string::npos)
+      << help;
+  EXPECT_NE(help.find("--GcnMatching.ratio arg (=0.8)"), std::string::npos)
+      << help;
+}
+
 }  // namespace
 }  // namespace colmap_gcn
