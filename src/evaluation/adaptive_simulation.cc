@@ -163,6 +163,10 @@ GcnMatchingOptions WithoutCaches(GcnMatchingOptions options) {
       .gcn.use_vlad_cache = false;
   options.generators.Get<AdaptiveGcnPairingOptions>("adaptive")
       .knn.descriptors.use_cache = false;
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive_recall")
+      .gcn.use_vlad_cache = false;
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive_recall")
+      .knn.descriptors.use_cache = false;
   options.generators.Get<GcnModelPairingOptions>("gcn").use_vlad_cache = false;
   options.generators.Get<GraphMatchPairingOptions>("graphmatch")
       .knn.descriptors.use_cache = false;
