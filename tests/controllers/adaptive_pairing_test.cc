@@ -179,6 +179,21 @@ TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
   };
   AdaptivePairingOptions options;
   options.isolated_retries = 0;
+  // The enough rule: every pair within the groups, no cross pair after
+  // round 1 (no probe: the groups are connected, nothing left to connect).
+  AdaptivePairGenerator enough(options, image_ids, candidates);
+  const auto enough_blocks = RunToTheEnd(&enough, verify);
+  size_t enough_within = 0;
+  for (size_t b = 0; b < enough_blocks.size(); ++b) {
+    for (const ImagePair& pair : enough_blocks[b]) {
+      const bool same = group(pair.first) == group(pair.second);
+      enough_within += same ? 1 : 0;
+      EXPECT_TRUE(same || b == 0) << pair.first << "-" << pair.second;
+    }
+  }
+  EXPECT_EQ(enough_within, 2u * 66u);
+  // The recall rule ends with one probe round.
+  options.stop_rule = AdaptiveStopRule::kRecall;
   AdaptivePairGenerator generator(options, image_ids, candidates);
   const auto blocks = RunToTheEnd(&generator, verify);
   size_t within = 0;
@@ -306,7 +321,8 @@ TEST(AdaptivePairGenerator, EnoughStopsOnADenseCaptureWhereRecallDoesNot) {
   }
   EXPECT_EQ(close, 29u + 28u);
   EXPECT_EQ(enough.Rounds().back().num_components, 1u);
-  EXPECT_EQ(enough.Rounds().back().num_connected, 30u);
+  // The two end images have only two partners within distance 2.
+  EXPECT_EQ(enough.Rounds().back().num_connected, 28u);
 }
 
 TEST(AdaptivePairGenerator, WeakImagesKeepTryingWithinTheirPatience) {
