@@ -2,67 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <cstdio>
 
-#include "retrieval/global_descriptors.h"
-#include "retrieval/knn.h"
 #include "util/error.h"
 #include "util/logging.h"
 #include "util/option_check.h"
-#include "util/option_manager.h"
 #include "util/pair_key.h"
 #include "util/random.h"
 
 namespace colmap_gcn {
 namespace {
 
-// The bimodality an Otsu split needs to be taken as the collection's cut:
-// a unimodal Gaussian's best split explains 2/pi = 0.64 of the variance,
-// a uniform's 0.75; two separated modes approach 1.
-constexpr double kMinBetweenClassShare = 0.75;
-constexpr size_t kMinCutSamples = 20;
-// The lower Otsu class is taken for accidental verifications only when its
-// median is at most this many times COLMAP's default min_num_inliers.
-constexpr double kMaxAccidentalMedian = 2.0;
-// One pseudo-sample at 1/2 added to each calibration step, so a step of a
-// few pairs claims neither certainty nor, at the low end where a failed
-// exploration pair may stand alone, the collection's overall rate.
-constexpr double kCalibrationPrior = 1.0;
-constexpr double kCalibrationPriorRate = 0.5;
 // Classes of common strong neighbours: 0, 1, 2-3, 4-7, >= 8.
 constexpr int kSupportClasses = 5;
-
-double Logit(double p) {
-  const double q = std::clamp(p, 1e-3, 1 - 1e-3);
-  return std::log(q / (1 - q));
-}
-
-double Sigmoid(double x) { return 1 / (1 + std::exp(-x)); }
-
-// Weight of the Gaussian prior on a support class's log-odds offset: a
-// class of a few pairs that all verified strongly gets a moderate raise,
-// not certainty.
-constexpr double kOffsetPrior = 2.0;
-
-// The log-odds offset d in [-6, 6] that maximises the class's likelihood
-// under the prior: sum_i (sigmoid(logits_i + d) - y_i) + kOffsetPrior d = 0
-// (bisection; the left side increases with d).
-double FitLogOddsOffset(const std::vector<double>& logits,
-                        double num_positive) {
-  double low = -6;
-  double high = 6;
-  for (int iteration = 0; iteration < 60; ++iteration) {
-    const double mid = 0.5 * (low + high);
-    double sum = kOffsetPrior * mid - num_positive;
-    for (const double logit : logits) sum += Sigmoid(logit + mid);
-    if (sum < 0) {
-      low = mid;
-    } else {
-      high = mid;
-    }
-  }
-  return 0.5 * (low + high);
-}
 
 }  // namespace
 
@@ -79,115 +31,9 @@ void AdaptivePairingOptions::Check() const {
   CHECK_OPTION_GE(max_strong_inliers, min_strong_inliers);
   CHECK_OPTION_GE(min_propagation_samples, 1);
   CHECK_OPTION_GE(isolated_retries, 0);
-}
-
-void IsotonicCalibration::Fit(std::vector<std::pair<float, int>> samples) {
-  lower_.clear();
-  upper_.clear();
-  levels_.clear();
-  num_samples_ = samples.size();
-  if (samples.empty()) return;
-  std::sort(samples.begin(), samples.end());
-  struct Block {
-    float lower;
-    float upper;
-    double sum;
-    double weight;
-  };
-  std::vector<Block> blocks;
-  for (size_t i = 0; i < samples.size();) {
-    Block block{samples[i].first, samples[i].first, 0, 0};
-    size_t j = i;
-    for (; j < samples.size() && samples[j].first == samples[i].first; ++j) {
-      block.sum += samples[j].second;
-      block.weight += 1;
-    }
-    i = j;
-    blocks.push_back(block);
-    // Pool adjacent violators: merge while the previous step is higher.
-    while (blocks.size() >= 2) {
-      Block& prev = blocks[blocks.size() - 2];
-      const Block& last = blocks.back();
-      if (prev.sum * last.weight <= last.sum * prev.weight) break;
-      prev.sum += last.sum;
-      prev.weight += last.weight;
-      prev.upper = last.upper;
-      blocks.pop_back();
-    }
-  }
-  double level = 0;
-  for (const Block& block : blocks) {
-    const double shrunk =
-        (block.sum + kCalibrationPrior * kCalibrationPriorRate) /
-        (block.weight + kCalibrationPrior);
-    level = std::max(level, shrunk);  // shrinking may break monotonicity
-    lower_.push_back(block.lower);
-    upper_.push_back(block.upper);
-    levels_.push_back(level);
-  }
-}
-
-double IsotonicCalibration::Predict(float score) const {
-  if (levels_.empty()) return 0;
-  // The step whose range holds the score, or linear between the two steps
-  // around a gap; beyond the samples, the end steps.
-  const auto it = std::upper_bound(lower_.begin(), lower_.end(), score);
-  if (it == lower_.begin()) return levels_.front();
-  const size_t i = static_cast<size_t>(it - lower_.begin()) - 1;
-  if (score <= upper_[i] || i + 1 == levels_.size()) return levels_[i];
-  const double t = (static_cast<double>(score) - upper_[i]) /
-                   (static_cast<double>(lower_[i + 1]) - upper_[i]);
-  return levels_[i] + t * (levels_[i + 1] - levels_[i]);
-}
-
-int LearnStrongInlierCut(const std::vector<size_t>& verified_inliers,
-                         const AdaptivePairingOptions& options) {
-  if (verified_inliers.size() < kMinCutSamples) {
-    return options.min_strong_inliers;
-  }
-  std::vector<double> values;
-  values.reserve(verified_inliers.size());
-  for (const size_t inliers : verified_inliers) {
-    values.push_back(
-        std::log(static_cast<double>(std::max<size_t>(1, inliers))));
-  }
-  std::sort(values.begin(), values.end());
-  const double n = static_cast<double>(values.size());
-  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
-  double variance = 0;
-  for (const double v : values) variance += (v - mean) * (v - mean);
-  variance /= n;
-  if (variance <= 0) return options.min_strong_inliers;
-  double best = -1;
-  double best_cut = 0;
-  double prefix = 0;
-  for (size_t k = 1; k < values.size(); ++k) {
-    prefix += values[k - 1];
-    if (values[k - 1] == values[k]) continue;
-    const double w0 = static_cast<double>(k) / n;
-    const double m0 = prefix / static_cast<double>(k);
-    const double m1 = (mean * n - prefix) / (n - static_cast<double>(k));
-    const double between = w0 * (1 - w0) * (m0 - m1) * (m0 - m1);
-    if (between > best) {
-      best = between;
-      best_cut = 0.5 * (values[k - 1] + values[k]);
-    }
-  }
-  if (best / variance < kMinBetweenClassShare) {
-    return options.min_strong_inliers;
-  }
-  // The accidental mode sits just above COLMAP's verification threshold
-  // (15-35 inliers on a repetitive courtyard); a lower class whose median
-  // is far above it is a weaker mode of real pairs, not accidents.
-  const size_t num_lower = static_cast<size_t>(std::count_if(
-      values.begin(), values.end(), [&](double v) { return v < best_cut; }));
-  if (std::exp(values[num_lower / 2]) >
-      kMaxAccidentalMedian * kDefaultMinNumInliers) {
-    return options.min_strong_inliers;
-  }
-  const int cut = static_cast<int>(std::ceil(std::exp(best_cut)));
-  return std::clamp(
-      cut, options.min_strong_inliers, options.max_strong_inliers);
+  CHECK_OPTION_RANGE(relative_strength, 0.0, 1.0);
+  CHECK_OPTION_GE(min_strong_partners, 0);
+  CHECK_OPTION_GE(image_patience, 0);
 }
 
 AdaptivePairGenerator::AdaptivePairGenerator(
@@ -259,6 +105,8 @@ void AdaptivePairGenerator::Reset() {
   calibration_ = IsotonicCalibration();
   support_offsets_.assign(kSupportClasses, 0.0);
   retries_.assign(image_ids_.size(), 0);
+  failures_.assign(image_ids_.size(), 0);
+  best_inliers_.assign(image_ids_.size(), 0);
   prepared_ = false;
   next_.clear();
   next_yield_ = -1;
@@ -292,6 +140,7 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
   round.expected_yield = next_yield_;
   round.probe = next_probe_;
   round.connectivity = next_connectivity_;
+  round.num_guarantee = next_guarantee_;
   rounds_.push_back(round);
   round_timer_.Restart();
   next_.clear();
@@ -306,8 +155,19 @@ std::vector<float> AdaptivePairGenerator::Scores() const {
 }
 
 bool AdaptivePairGenerator::IsStrong(const Candidate& candidate) const {
-  return candidate.state == Candidate::State::kObserved && candidate.verified &&
-         candidate.num_inliers >= static_cast<size_t>(strong_cut_);
+  if (candidate.state != Candidate::State::kObserved || !candidate.verified ||
+      candidate.num_inliers < static_cast<size_t>(strong_cut_)) {
+    return false;
+  }
+  if (rejected_ &&
+      rejected_(image_ids_[candidate.row1], image_ids_[candidate.row2])) {
+    return false;
+  }
+  if (options_.stop_rule != AdaptiveStopRule::kEnough) return true;
+  return IsRelativelyStrong(candidate.num_inliers,
+                            best_inliers_[candidate.row1],
+                            best_inliers_[candidate.row2],
+                            options_.relative_strength);
 }
 
 int AdaptivePairGenerator::CommonStrongNeighbours(int c) const {
@@ -373,6 +233,11 @@ void AdaptivePairGenerator::Observe(
   round.total_attempted = yielded_.size();
   round.total_strong = 0;
   for (const int c : yielded_) round.total_strong += IsStrong(candidates_[c]);
+  Connectivity(&round.num_connected, &round.num_components);
+  LogRound(round);
+}
+
+void AdaptivePairGenerator::LogRound(const AdaptiveRound& round) const {
   char yield[32];
   if (round.expected_yield < 0) {
     std::snprintf(yield, sizeof(yield), "n/a");
@@ -387,6 +252,18 @@ void AdaptivePairGenerator::Observe(
     std::snprintf(text, sizeof(text), "%+.1f", offset);
     offsets += (offsets.empty() ? "" : "/") + std::string(text);
   }
+  std::string connected;
+  if (options_.stop_rule == AdaptiveStopRule::kEnough) {
+    connected = "; " + std::to_string(round.num_connected) + " of " +
+                std::to_string(image_ids_.size()) + " images with " +
+                std::to_string(options_.min_strong_partners) +
+                " strong partners, " + std::to_string(round.num_components) +
+                " strong components";
+    if (round.num_guarantee > 0) {
+      connected += ", " + std::to_string(round.num_guarantee) +
+                   " pairs for weakly connected images";
+    }
+  }
   LOG(INFO) << label_ << " round " << round.round
             << (round.probe          ? " (probe)"
                 : round.connectivity ? " (connectivity)"
@@ -396,7 +273,18 @@ void AdaptivePairGenerator::Observe(
             << round.num_strong << " strong (cut " << round.strong_cut
             << " inliers); " << round.total_attempted << " attempted, "
             << round.total_strong << " strong in all; support offsets "
-            << offsets << "; " << seconds << " s";
+            << offsets << connected << "; " << seconds << " s";
+}
+
+void AdaptivePairGenerator::Connectivity(size_t* num_connected,
+                                         size_t* num_components) const {
+  *num_connected = 0;
+  for (const std::vector<int>& list : strong_neighbours_) {
+    if (static_cast<int>(list.size()) >= options_.min_strong_partners) {
+      ++*num_connected;
+    }
+  }
+  *num_components = CountComponents(strong_neighbours_);
 }
 
 void AdaptivePairGenerator::Refit() {
@@ -407,7 +295,30 @@ void AdaptivePairGenerator::Refit() {
       verified_inliers.push_back(candidate.num_inliers);
     }
   }
-  strong_cut_ = LearnStrongInlierCut(verified_inliers, options_);
+  strong_cut_ = LearnStrongInlierCut(verified_inliers,
+                                     options_.min_strong_inliers,
+                                     options_.max_strong_inliers);
+  std::fill(best_inliers_.begin(), best_inliers_.end(), 0);
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (candidate.state != Candidate::State::kObserved || !candidate.verified ||
+        (rejected_ &&
+         rejected_(image_ids_[candidate.row1], image_ids_[candidate.row2]))) {
+      continue;
+    }
+    for (const int row : {candidate.row1, candidate.row2}) {
+      best_inliers_[row] = std::max(best_inliers_[row], candidate.num_inliers);
+    }
+  }
+  std::fill(failures_.begin(), failures_.end(), 0);
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (candidate.state != Candidate::State::kObserved || IsStrong(candidate)) {
+      continue;
+    }
+    ++failures_[candidate.row1];
+    ++failures_[candidate.row2];
+  }
   for (std::vector<int>& list : strong_neighbours_) list.clear();
   for (const int c : yielded_) {
     const Candidate& candidate = candidates_[c];
@@ -494,15 +405,23 @@ std::vector<int> AdaptivePairGenerator::FirstRound() const {
   return block;
 }
 
+size_t AdaptivePairGenerator::Budget() const {
+  if (options_.max_num_pairs <= 0) return candidates_.size();
+  const size_t max = static_cast<size_t>(options_.max_num_pairs);
+  return yielded_.size() >= max ? 0 : max - yielded_.size();
+}
+
+size_t AdaptivePairGenerator::RoundSize() const {
+  return options_.round_size > 0 ? static_cast<size_t>(options_.round_size)
+                                 : std::max<size_t>(50, image_ids_.size());
+}
+
 std::vector<int> AdaptivePairGenerator::LaterRound() const {
   next_yield_ = -1;
   next_probe_ = false;
   next_connectivity_ = false;
-  size_t budget = candidates_.size();
-  if (options_.max_num_pairs > 0) {
-    const size_t max = static_cast<size_t>(options_.max_num_pairs);
-    budget = yielded_.size() >= max ? 0 : max - yielded_.size();
-  }
+  next_guarantee_ = 0;
+  const size_t budget = Budget();
   bool any_observed = false;
   for (const int c : yielded_) {
     any_observed |= candidates_[c].state == Candidate::State::kObserved;
@@ -524,301 +443,135 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
     }
     return candidates_[a].score > candidates_[b].score;
   });
-  const size_t round_size = options_.round_size > 0
-                                ? static_cast<size_t>(options_.round_size)
-                                : std::max<size_t>(50, image_ids_.size());
+  const size_t round_size = std::min(RoundSize(), budget);
   std::vector<int> block;
-  double sum = 0;
   for (const int c : untried) {
-    if (block.size() >= std::min(round_size, budget) ||
+    if (block.size() >= round_size ||
         probability[c] < options_.min_pair_yield) {
       break;
     }
     block.push_back(c);
-    sum += probability[c];
   }
+  const bool enough = options_.stop_rule == AdaptiveStopRule::kEnough;
   const AdaptiveRound& last = rounds_.back();
   const double last_yield = last.num_pairs == 0
                                 ? 0.0
                                 : static_cast<double>(last.num_strong) /
                                       static_cast<double>(last.num_pairs);
-  if (block.empty() && last_yield >= options_.min_pair_yield) {
+  // kEnough probes only while the last round still connected the
+  // collection: more images with enough strong partners, or fewer strong
+  // components, than after the round before it.
+  const size_t before_connected =
+      rounds_.size() >= 2 ? rounds_[rounds_.size() - 2].num_connected : 0;
+  const size_t before_components =
+      rounds_.size() >= 2 ? rounds_[rounds_.size() - 2].num_components
+                          : image_ids_.size();
+  const bool connected_more = last.num_connected > before_connected ||
+                              last.num_components < before_components;
+  if (block.empty() && last_yield >= options_.min_pair_yield &&
+      (!enough || connected_more)) {
     // Probe: the last round verified well, so the candidates just below
     // it are tried rather than trusted to the extrapolated calibration.
-    const size_t probe_size = std::min(
-        {round_size, budget, std::max<size_t>(10, image_ids_.size() / 2)});
+    const size_t probe_size =
+        std::min(round_size, std::max<size_t>(10, image_ids_.size() / 2));
     for (const int c : untried) {
       if (block.size() >= probe_size) break;
       block.push_back(c);
-      sum += probability[c];
     }
     next_probe_ = !block.empty();
   }
-  if (block.empty()) {
-    // Connectivity: images never attempted, then images without a strong
-    // pair, each its most probable untried candidate.
-    next_connectivity_ = true;
-    std::vector<uint8_t> attempted(image_ids_.size(), 0);
-    for (const int c : yielded_) {
-      attempted[candidates_[c].row1] = 1;
-      attempted[candidates_[c].row2] = 1;
-    }
-    std::vector<int> best(image_ids_.size(), -1);
-    for (const int c : untried) {
-      for (const int row : {candidates_[c].row1, candidates_[c].row2}) {
-        if (best[row] < 0) best[row] = c;
-      }
-    }
-    std::vector<uint8_t> chosen(candidates_.size(), 0);
-    for (size_t row = 0; row < image_ids_.size(); ++row) {
-      const bool wanted =
-          !attempted[row] || (strong_neighbours_[row].empty() &&
-                              retries_[row] < options_.isolated_retries);
-      if (!wanted || best[row] < 0 || chosen[best[row]]) continue;
-      chosen[best[row]] = 1;
-    }
-    for (const int c : untried) {
-      if (chosen[c] && block.size() < budget) {
-        block.push_back(c);
-        sum += probability[c];
-      }
-    }
+  if (enough) {
+    std::vector<uint8_t> taken(candidates_.size(), 0);
+    for (const int c : block) taken[c] = 1;
+    const std::vector<int> guarantee =
+        GuaranteeBlock(untried, taken, budget - block.size());
+    next_guarantee_ = guarantee.size();
+    block.insert(block.end(), guarantee.begin(), guarantee.end());
+  } else if (block.empty()) {
+    block = ConnectivityBlock(untried, budget);
+    next_connectivity_ = !block.empty();
   }
   if (!block.empty()) {
+    double sum = 0;
+    for (const int c : block) sum += probability[c];
     next_yield_ = sum / static_cast<double>(block.size());
-  } else {
-    next_connectivity_ = false;
-    LOG(INFO) << label_ << ": finished after " << rounds_.size()
-              << " rounds; no candidate left with a calibrated probability "
-                 "of a strong verification >= "
-              << options_.min_pair_yield
-              << (budget == 0 ? " within max_num_pairs" : "");
+    return block;
+  }
+  LOG(INFO) << label_ << ": finished after " << rounds_.size()
+            << " rounds; no candidate left with a calibrated probability "
+               "of a strong verification >= "
+            << options_.min_pair_yield
+            << (enough ? ", and every image has " +
+                             std::to_string(options_.min_strong_partners) +
+                             " strong partners or has tried " +
+                             std::to_string(options_.image_patience) +
+                             " candidates without one"
+                       : std::string())
+            << (budget == 0 ? " within max_num_pairs" : "");
+  return block;
+}
+
+std::vector<int> AdaptivePairGenerator::GuaranteeBlock(
+    const std::vector<int>& untried,
+    const std::vector<uint8_t>& taken,
+    size_t budget) const {
+  // Partners still wanted per image: up to min_strong_partners strong ones,
+  // within its patience; the taken pairs already count for both images.
+  std::vector<int> wanted(image_ids_.size(), 0);
+  for (size_t row = 0; row < image_ids_.size(); ++row) {
+    wanted[row] =
+        PartnersStillWanted(static_cast<int>(strong_neighbours_[row].size()),
+                            failures_[row],
+                            options_.min_strong_partners,
+                            options_.image_patience);
+  }
+  for (size_t c = 0; c < taken.size(); ++c) {
+    if (!taken[c]) continue;
+    for (const int row : {candidates_[c].row1, candidates_[c].row2}) {
+      wanted[row] = std::max(0, wanted[row] - 1);
+    }
+  }
+  std::vector<int> block;
+  for (const int c : untried) {  // most probable first
+    if (block.size() >= budget) break;
+    if (taken[c]) continue;
+    const int row1 = candidates_[c].row1;
+    const int row2 = candidates_[c].row2;
+    if (wanted[row1] == 0 && wanted[row2] == 0) continue;
+    block.push_back(c);
+    wanted[row1] = std::max(0, wanted[row1] - 1);
+    wanted[row2] = std::max(0, wanted[row2] - 1);
   }
   return block;
 }
 
-AdaptiveGcnPairingOptions::AdaptiveGcnPairingOptions() {
-  gcn.k1 = 100;
-  knn.k = 100;
-}
-
-void AdaptiveGcnPairingOptions::Check() const {
-  gcn.Check();
-  adaptive.Check();
-  CHECK_OPTION_RANGE(similarity_weight, 0.0, 1.0);
-  if (similarity_weight > 0) knn.Check();
-}
-
-namespace {
-
-// Each unordered pair's percentile in (0, 1] within its list (the higher
-// score of a duplicate kept; ties share their mean percentile), by pair id.
-std::unordered_map<image_pair_t, double> ScorePercentiles(
-    const std::vector<PairCandidate>& candidates) {
-  std::unordered_map<image_pair_t, float> best;
-  for (const PairCandidate& candidate : candidates) {
-    if (candidate.image_id1 == candidate.image_id2) continue;
-    const auto [it, inserted] = best.emplace(
-        ImagePairToPairId(candidate.image_id1, candidate.image_id2),
-        candidate.score);
-    if (!inserted) it->second = std::max(it->second, candidate.score);
+std::vector<int> AdaptivePairGenerator::ConnectivityBlock(
+    const std::vector<int>& untried, size_t budget) const {
+  // Images never attempted, then images without a strong pair, each its
+  // most probable untried candidate.
+  std::vector<uint8_t> attempted(image_ids_.size(), 0);
+  for (const int c : yielded_) {
+    attempted[candidates_[c].row1] = 1;
+    attempted[candidates_[c].row2] = 1;
   }
-  std::vector<float> scores;
-  scores.reserve(best.size());
-  for (const auto& [pair_id, score] : best) scores.push_back(score);
-  std::sort(scores.begin(), scores.end());
-  std::unordered_map<image_pair_t, double> percentiles;
-  const double n = static_cast<double>(scores.size());
-  for (const auto& [pair_id, score] : best) {
-    const double low = static_cast<double>(
-        std::lower_bound(scores.begin(), scores.end(), score) - scores.begin());
-    const double high = static_cast<double>(
-        std::upper_bound(scores.begin(), scores.end(), score) - scores.begin());
-    percentiles.emplace(pair_id, (low + high + 1) / (2 * n));
-  }
-  return percentiles;
-}
-
-}  // namespace
-
-std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
-                                         const std::vector<PairCandidate>& b,
-                                         double weight_b) {
-  const std::unordered_map<image_pair_t, double> pa = ScorePercentiles(a);
-  const std::unordered_map<image_pair_t, double> pb = ScorePercentiles(b);
-  std::vector<image_pair_t> pair_ids;
-  for (const auto& [pair_id, p] : pa) pair_ids.push_back(pair_id);
-  for (const auto& [pair_id, p] : pb) {
-    if (pa.count(pair_id) == 0) pair_ids.push_back(pair_id);
-  }
-  // Pair ids order pairs by (smaller id, larger id).
-  std::sort(pair_ids.begin(), pair_ids.end());
-  std::vector<PairCandidate> combined;
-  combined.reserve(pair_ids.size());
-  for (const image_pair_t pair_id : pair_ids) {
-    const auto ia = pa.find(pair_id);
-    const auto ib = pb.find(pair_id);
-    const double score = (1 - weight_b) * (ia != pa.end() ? ia->second : 0.0) +
-                         weight_b * (ib != pb.end() ? ib->second : 0.0);
-    const ImagePair pair = PairIdToImagePair(pair_id);
-    combined.push_back({pair.first, pair.second, static_cast<float>(score)});
-  }
-  return combined;
-}
-
-std::vector<PairCandidate> GcnModelCandidates(
-    const GcnModelPairingOptions& options,
-    const Database& database,
-    std::vector<image_t>* image_ids) {
-  std::vector<PairCandidate> candidates;
-  for (const ScoredImagePair& pair :
-       ScoreEveryGcnCandidate(options, database)) {
-    candidates.push_back({pair.image_id1, pair.image_id2, pair.score});
-  }
-  image_ids->clear();
-  for (const DatabaseImage& image : database.ReadAllImages()) {
-    image_ids->push_back(image.image_id);
-  }
-  return candidates;
-}
-
-namespace {
-
-void AddAdaptiveOptions(OptionManager* manager,
-                        AdaptivePairingOptions* options) {
-  manager->AddDefaultOption("GcnMatching.initial_per_image",
-                            &options->initial_per_image,
-                            "adaptive/graphmatch: round 1's best candidates "
-                            "per image");
-  manager->AddDefaultOption(
-      "GcnMatching.exploration_fraction",
-      &options->exploration_fraction,
-      "adaptive/graphmatch: round 1's share of lower-ranked candidates");
-  manager->AddDefaultOption("GcnMatching.seed",
-                            &options->seed,
-                            "adaptive/graphmatch: seed of the exploration");
-  manager->AddDefaultOption(
-      "GcnMatching.round_size",
-      &options->round_size,
-      "adaptive/graphmatch: pairs per later round; -1: images (>= 50)");
-  manager->AddDefaultOption(
-      "GcnMatching.min_pair_yield",
-      &options->min_pair_yield,
-      "adaptive/graphmatch: stop when no candidate's calibrated P(strong "
-      "verification) reaches this");
-  manager->AddDefaultOption(
-      "GcnMatching.max_num_pairs",
-      &options->max_num_pairs,
-      "adaptive/graphmatch: hard budget of attempted pairs; 0: none");
-  manager->AddDefaultOption(
-      "GcnMatching.min_strong_inliers",
-      &options->min_strong_inliers,
-      "adaptive/graphmatch: lowest learned strong-verification cut");
-  manager->AddDefaultOption(
-      "GcnMatching.max_strong_inliers",
-      &options->max_strong_inliers,
-      "adaptive/graphmatch: highest learned strong-verification cut");
-  manager->AddDefaultOption(
-      "GcnMatching.min_propagation_samples",
-      &options->min_propagation_samples,
-      "adaptive/graphmatch: matched path-closing pairs before propagation "
-      "is calibrated on its own");
-  manager->AddDefaultOption(
-      "GcnMatching.isolated_retries",
-      &options->isolated_retries,
-      "adaptive/graphmatch: extra attempts for images without a strong "
-      "pair");
-}
-
-}  // namespace
-
-PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptivePairGeneratorSpec() {
-  PairGeneratorSpec<AdaptiveGcnPairingOptions> spec;
-  spec.name = "adaptive";
-  spec.add_options = [](OptionManager* manager,
-                        AdaptiveGcnPairingOptions* options) {
-    GcnModelPairGeneratorSpec().add_options(manager, &options->gcn);
-    KnnPairGeneratorSpec().add_options(manager, &options->knn);
-    AddAdaptiveOptions(manager, &options->adaptive);
-    manager->AddDefaultOption(
-        "GcnMatching.similarity_weight",
-        &options->similarity_weight,
-        "adaptive: weight of embedding similarity in the prior (percentiles "
-        "of the GCN score and of the similarity); 0: the GCN score alone");
-  };
-  spec.create = [](const AdaptiveGcnPairingOptions& options,
-                   const PairGeneratorContext& context)
-      -> std::unique_ptr<PairGenerator> {
-    std::vector<image_t> image_ids;
-    std::vector<PairCandidate> candidates =
-        GcnModelCandidates(options.gcn, context.database, &image_ids);
-    if (options.similarity_weight > 0) {
-      std::vector<image_t> knn_image_ids;
-      candidates = CombinePriors(
-          candidates,
-          SimilarityCandidates(options.knn, context.database, &knn_image_ids),
-          options.similarity_weight);
-    }
-    return std::make_unique<AdaptivePairGenerator>(
-        options.adaptive, image_ids, candidates, "adaptive");
-  };
-  return spec;
-}
-
-GraphMatchPairingOptions::GraphMatchPairingOptions() { knn.k = 100; }
-
-void GraphMatchPairingOptions::Check() const {
-  knn.Check();
-  adaptive.Check();
-}
-
-std::vector<PairCandidate> SimilarityCandidates(
-    const KnnPairingOptions& options,
-    const Database& database,
-    std::vector<image_t>* image_ids) {
-  options.Check();
-  GlobalDescriptorOptions descriptor_options = options.Descriptors();
-  descriptor_options.num_threads = options.num_threads;
-  descriptor_options.vlad.num_threads = options.num_threads;
-  const EmbeddingMatrix embeddings =
-      ComputeGlobalDescriptors(database, descriptor_options, image_ids);
-  KnnOptions knn_options;
-  knn_options.k = std::min<int>(
-      options.k, std::max<int>(1, static_cast<int>(image_ids->size()) - 1));
-  knn_options.num_threads = options.num_threads;
-  knn_options.method = options.knn_method;
-  std::vector<PairCandidate> candidates;
-  if (image_ids->size() < 2) return candidates;
-  const KnnGraph graph = ComputeKnn(embeddings, knn_options);
-  for (int i = 0; i < graph.NumImages(); ++i) {
-    for (int n = 0; n < graph.K(); ++n) {
-      const int j = graph.indices(i, n);
-      if (j < 0 || j == i) continue;
-      candidates.push_back(
-          {(*image_ids)[i], (*image_ids)[j], graph.similarities(i, n)});
+  std::vector<int> best(image_ids_.size(), -1);
+  for (const int c : untried) {
+    for (const int row : {candidates_[c].row1, candidates_[c].row2}) {
+      if (best[row] < 0) best[row] = c;
     }
   }
-  return candidates;
+  std::vector<uint8_t> chosen(candidates_.size(), 0);
+  for (size_t row = 0; row < image_ids_.size(); ++row) {
+    const bool wanted =
+        !attempted[row] || (strong_neighbours_[row].empty() &&
+                            retries_[row] < options_.isolated_retries);
+    if (!wanted || best[row] < 0 || chosen[best[row]]) continue;
+    chosen[best[row]] = 1;
+  }
+  std::vector<int> block;
+  for (const int c : untried) {
+    if (chosen[c] && block.size() < budget) block.push_back(c);
+  }
+  return block;
 }
-
-PairGeneratorSpec<GraphMatchPairingOptions> GraphMatchPairGeneratorSpec() {
-  PairGeneratorSpec<GraphMatchPairingOptions> spec;
-  spec.name = "graphmatch";
-  spec.add_options = [](OptionManager* manager,
-                        GraphMatchPairingOptions* options) {
-    KnnPairGeneratorSpec().add_options(manager, &options->knn);
-    AddAdaptiveOptions(manager, &options->adaptive);
-  };
-  spec.create = [](const GraphMatchPairingOptions& options,
-                   const PairGeneratorContext& context)
-      -> std::unique_ptr<PairGenerator> {
-    std::vector<image_t> image_ids;
-    const std::vector<PairCandidate> candidates =
-        SimilarityCandidates(options.knn, context.database, &image_ids);
-    return std::make_unique<AdaptivePairGenerator>(
-        options.adaptive, image_ids, candidates, "graphmatch");
-  };
-  return spec;
-}
-
 }  // namespace colmap_gcn

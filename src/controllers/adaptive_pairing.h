@@ -1,15 +1,17 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "controllers/adaptive_calibration.h"
 #include "pairing/gcn_model_pairing.h"
-#include "pairing/knn_pairing.h"
 #include "pairing/pair_generator_spec.h"
 #include "pairing/pairing.h"
+#include "pairing/knn_pairing.h"
 #include "util/timer.h"
 #include "util/types.h"
 
@@ -22,6 +24,22 @@ namespace colmap_gcn {
 // is calibrated to P(strong) on the pairs matched so far, and the next round
 // takes the most probable candidates while that probability stays above
 // min_pair_yield.
+//
+// When to stop (AdaptiveStopRule):
+// - kEnough (adaptive's default): a strong pair must also hold at least
+//   relative_strength of the inliers of the best verified pair of the
+//   weaker of its two images (like the labels' common-track ratio, so weak
+//   overlaps in a collection where almost every pair verifies are not
+//   positives); every image keeps trying its most probable
+//   candidates until it has min_strong_partners strong partners or has spent
+//   image_patience attempts without one; probe rounds run only while they
+//   still connect the collection (more images reach min_strong_partners or
+//   strong components merge).
+// - kRecall (adaptive_recall, graphmatch): the rule before kEnough: probe
+//   rounds while the last round's strong fraction reached min_pair_yield,
+//   then the connectivity attempts of isolated_retries.
+enum class AdaptiveStopRule { kEnough, kRecall };
+
 struct AdaptivePairingOptions {
   // Round 1: every image's best candidates by prior score.
   int initial_per_image = 3;
@@ -69,6 +87,22 @@ struct AdaptivePairingOptions {
   // every image without a strong pair up to this many more attempts.
   int isolated_retries = 2;
 
+  // kEnough / kRecall (see AdaptiveStopRule); chosen by the pairing's name
+  // (adaptive / adaptive_recall), not a flag.
+  AdaptiveStopRule stop_rule = AdaptiveStopRule::kEnough;
+
+  // kEnough: a verified pair is strong only with at least this share of
+  // the inliers of the best verified pair of the weaker of its images
+  // (IsRelativelyStrong).
+  double relative_strength = 0.05;
+
+  // kEnough: strong partners every image keeps trying to reach ...
+  int min_strong_partners = 3;
+
+  // ... while it has spent fewer than this many attempts that did not
+  // verify strongly (its candidates tried in order of probability).
+  int image_patience = 5;
+
   // Throws OptionError naming the first invalid field.
   void Check() const;
 };
@@ -87,6 +121,11 @@ struct AdaptiveRound {
   double expected_yield = -1;  // mean calibrated P(strong); -1: round 1
   bool probe = false;          // taken below min_pair_yield to probe
   bool connectivity = false;   // the connectivity attempts
+  size_t num_guarantee = 0;    // kEnough: pairs for images below
+                               // min_strong_partners
+  size_t num_connected = 0;    // kEnough, after it: images with
+                               // min_strong_partners strong partners
+  size_t num_components = 0;   // kEnough, after it: strong components
   size_t num_verified = 0;     // of this round's pairs
   size_t num_strong = 0;       // of this round's pairs, at the cut below
   int strong_cut = 0;          // inliers, learned after this round
@@ -95,29 +134,12 @@ struct AdaptiveRound {
   double seconds = 0;       // Next() to Observe(), matching included
 };
 
-// P(strong | score) by isotonic regression (pool-adjacent-violators) on
-// (score, 0/1) samples: a non-decreasing step function, each step shrunk
-// by one pseudo-sample at 1/2 (then made monotone again), linear across
-// the gaps between steps; below the lowest sample, the lowest step.
-// Deterministic.
-class IsotonicCalibration {
- public:
-  void Fit(std::vector<std::pair<float, int>> samples);
-  double Predict(float score) const;
-  bool Empty() const { return levels_.empty(); }
-  size_t NumSamples() const { return num_samples_; }
-
- private:
-  std::vector<float> lower_;    // smallest score of each step
-  std::vector<float> upper_;    // largest score of each step
-  std::vector<double> levels_;  // its probability, non-decreasing
-  size_t num_samples_ = 0;
-};
-
-// The collection's strong-verification cut from the inlier counts of its
-// verified pairs (see AdaptivePairingOptions).
-int LearnStrongInlierCut(const std::vector<size_t>& verified_inliers,
-                         const AdaptivePairingOptions& options);
+// The collection's strong-verification cut (see AdaptivePairingOptions).
+inline int LearnStrongInlierCut(const std::vector<size_t>& verified_inliers,
+                                const AdaptivePairingOptions& options) {
+  return LearnStrongInlierCut(
+      verified_inliers, options.min_strong_inliers, options.max_strong_inliers);
+}
 
 // The sample-calibrate-propagate loop over a fixed candidate list; COLMAP
 // independent (tests and gcn_adaptive_simulator drive it with tables of
@@ -139,6 +161,14 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<float> Scores() const override;
   bool UsesVerification() const override { return true; }
   void Observe(const std::vector<PairVerification>& verifications) override;
+
+  // Pairs a later filter rejects (e.g. a look-alike check): a rejected pair
+  // is never strong, so it is no propagation edge and no partner. Set before
+  // the first Observe(); empty: none rejected.
+  using PairRejection = std::function<bool(image_t, image_t)>;
+  void SetPairRejection(PairRejection rejected) {
+    rejected_ = std::move(rejected);
+  }
 
   const std::vector<AdaptiveRound>& Rounds() const { return rounds_; }
   int StrongCut() const { return strong_cut_; }
@@ -163,6 +193,21 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<int> FirstRound() const;
   std::vector<int> LaterRound() const;
   bool IsStrong(const Candidate& candidate) const;
+  bool IsStrong(int c) const { return IsStrong(candidates_[c]); }
+  size_t Budget() const;
+  size_t RoundSize() const;
+  // kEnough: the images' most probable candidates while they are below
+  // min_strong_partners and within image_patience (not in `taken`).
+  std::vector<int> GuaranteeBlock(const std::vector<int>& untried,
+                                  const std::vector<uint8_t>& taken,
+                                  size_t budget) const;
+  // kRecall: the connectivity attempts.
+  std::vector<int> ConnectivityBlock(const std::vector<int>& untried,
+                                     size_t budget) const;
+  // kEnough: images with min_strong_partners strong partners, and strong
+  // components (isolated images count).
+  void Connectivity(size_t* num_connected, size_t* num_components) const;
+  void LogRound(const AdaptiveRound& round) const;
   double Probability(int c) const;
   // Strong neighbours the pair's images have in common (the strong paths
   // of length two it closes), and its support class (kSupportClasses).
@@ -187,13 +232,17 @@ class AdaptivePairGenerator : public PairGenerator {
   // Log-odds offset per support class (0, 1, 2-3, 4-7, >= 8 common strong
   // neighbours).
   std::vector<double> support_offsets_;
-  std::vector<int> retries_;  // connectivity attempts per row
+  std::vector<int> retries_;          // connectivity attempts per row
+  std::vector<int> failures_;         // kEnough: attempts not strong, per row
+  std::vector<size_t> best_inliers_;  // best verified pair per row
+  PairRejection rejected_;
   Timer round_timer_;
   mutable bool prepared_ = false;
   mutable std::vector<int> next_;
   mutable double next_yield_ = -1;
   mutable bool next_probe_ = false;
   mutable bool next_connectivity_ = false;
+  mutable size_t next_guarantee_ = 0;
 };
 
 // --GcnMatching.pairing adaptive: the GCN model's candidates (all k1
@@ -230,6 +279,8 @@ std::vector<PairCandidate> GcnModelCandidates(
     std::vector<image_t>* image_ids);
 
 PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptivePairGeneratorSpec();
+// --GcnMatching.pairing adaptive_recall: the same with the kRecall rule.
+PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptiveRecallPairGeneratorSpec();
 
 // --GcnMatching.pairing graphmatch: a GraphMatch-style baseline (Cui et
 // al., 3DV 2017) with no GCN: the k nearest neighbours by embedding

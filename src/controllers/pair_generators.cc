@@ -21,6 +21,7 @@ const PairGeneratorRegistry& PairGenerators() {
     generators.Register(VocabTreePairGeneratorSpec());
     generators.Register(SequentialPairGeneratorSpec());
     generators.Register(AdaptivePairGeneratorSpec());
+    generators.Register(AdaptiveRecallPairGeneratorSpec());
     generators.Register(GraphMatchPairGeneratorSpec());
     return generators;
   }();

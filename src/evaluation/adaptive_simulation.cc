@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 #include <set>
+#include <string>
 #include <unordered_set>
 
 #include "controllers/adaptive_pairing.h"
@@ -163,6 +164,11 @@ GcnMatchingOptions WithoutCaches(GcnMatchingOptions options) {
       .gcn.use_vlad_cache = false;
   options.generators.Get<AdaptiveGcnPairingOptions>("adaptive").knn.use_cache =
       false;
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive_recall")
+      .gcn.use_vlad_cache = false;
+  options.generators.Get<AdaptiveGcnPairingOptions>("adaptive_recall")
+      .knn.use_cache =
+      false;
   options.generators.Get<GcnModelPairingOptions>("gcn").use_vlad_cache = false;
   options.generators.Get<GraphMatchPairingOptions>("graphmatch").knn.use_cache =
       false;
@@ -247,6 +253,23 @@ std::vector<NamedPairSetQuality> CompareBaselines(
   lines.push_back(
       {"knn at equal TAM",
        evaluate(KnnPairsByRank(options, database, replayed.num_pairs))});
+  for (const int k : {5, 10, 25}) {
+    GcnMatchingOptions knn = options;
+    knn.pairing = "knn";
+    knn.generators.Get<KnnPairingOptions>("knn").k = k;
+    lines.push_back({"knn:" + std::to_string(k),
+                     evaluate(CreatePairGenerator(knn, database)->AllPairs())});
+  }
+  if (options.pairing == "adaptive") {
+    // The same loop under the other stopping rule.
+    GcnMatchingOptions recall = options;
+    recall.pairing = "adaptive_recall";
+    std::unique_ptr<PairGenerator> baseline =
+        CreatePairGenerator(recall, database);
+    std::vector<ImagePair> baseline_pairs;
+    SimulatePairGenerator(baseline.get(), table, labels, cut, &baseline_pairs);
+    lines.push_back({"adaptive_recall", evaluate(baseline_pairs)});
+  }
   if (options.pairing != "graphmatch") {
     GcnMatchingOptions graphmatch = options;
     graphmatch.pairing = "graphmatch";

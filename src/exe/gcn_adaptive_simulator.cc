@@ -67,7 +67,8 @@ int RunGcnAdaptiveSimulator(int argc, char** argv) {
   manager.Check([&] { options.matching.Check(); });
   // Checked before the embedding: the generators that use verification.
   const std::string& pairing = options.matching.pairing;
-  if (pairing != "adaptive" && pairing != "graphmatch") {
+  if (pairing != "adaptive" && pairing != "adaptive_recall" &&
+      pairing != "graphmatch") {
     ThrowError("--GcnMatching.pairing ",
                pairing,
                " does not use verification; simulate adaptive or graphmatch");

@@ -86,82 +86,6 @@ std::vector<ImagePair> Flatten(
   return pairs;
 }
 
-TEST(LearnStrongInlierCut, SplitsABimodalSampleBetweenItsModes) {
-  AdaptivePairingOptions options;
-  std::vector<size_t> inliers;
-  // Accidental verifications 15-35, real ones 176-3152 (log-spread).
-  for (int i = 0; i < 60; ++i) inliers.push_back(15 + (i * 7) % 21);
-  for (int i = 0; i < 40; ++i) {
-    inliers.push_back(
-        static_cast<size_t>(176 * std::pow(3152.0 / 176, i / 39.0)));
-  }
-  const int cut = LearnStrongInlierCut(inliers, options);
-  EXPECT_GT(cut, 35);
-  EXPECT_LE(cut, 150);  // max_strong_inliers
-  options.max_strong_inliers = 1000;
-  const int free_cut = LearnStrongInlierCut(inliers, options);
-  EXPECT_GT(free_cut, 35);
-  EXPECT_LT(free_cut, 176);
-}
-
-TEST(LearnStrongInlierCut, FloorWithoutTwoModesOrEnoughPairs) {
-  AdaptivePairingOptions options;
-  options.min_strong_inliers = 40;
-  // One log-normal-like mode of real pairs: no cut inside it.
-  std::vector<size_t> real;
-  for (int i = 0; i < 200; ++i) {
-    const double z = std::sin(i * 12.9898) * 43758.5453;
-    const double u = z - std::floor(z);
-    const double v = std::fmod(i * 0.61803398875, 1.0);
-    real.push_back(static_cast<size_t>(
-        std::exp(6.0 + 0.6 * (u + v + std::fmod(i * 0.41421356, 1.0) - 1.5))));
-  }
-  EXPECT_EQ(LearnStrongInlierCut(real, options), 40);
-  EXPECT_EQ(LearnStrongInlierCut({20, 20, 500, 600}, options), 40);
-  // Two modes of real pairs (60-90 and 400-900 inliers): no accidents.
-  std::vector<size_t> weak_and_strong;
-  for (int i = 0; i < 40; ++i) {
-    weak_and_strong.push_back(60 + (i * 7) % 31);
-    weak_and_strong.push_back(400 + (i * 13) % 501);
-  }
-  EXPECT_EQ(LearnStrongInlierCut(weak_and_strong, options), 40);
-  EXPECT_EQ(LearnStrongInlierCut({}, options), 40);
-}
-
-TEST(IsotonicCalibration, MonotoneShrunkAndDeterministic) {
-  std::vector<std::pair<float, int>> samples;
-  for (int i = 0; i < 100; ++i) {
-    const float score = static_cast<float>(i) / 100.f;
-    // Mostly positive above 0.5, with violations on both sides.
-    const int label = (score > 0.5f) != (i % 9 == 0) ? 1 : 0;
-    samples.emplace_back(score, label);
-  }
-  IsotonicCalibration a;
-  a.Fit(samples);
-  std::vector<std::pair<float, int>> shuffled(samples.rbegin(), samples.rend());
-  std::rotate(shuffled.begin(), shuffled.begin() + 37, shuffled.end());
-  IsotonicCalibration b;
-  b.Fit(shuffled);
-  double previous = -1;
-  for (int i = -10; i <= 110; ++i) {
-    const float score = static_cast<float>(i) / 100.f;
-    const double p = a.Predict(score);
-    EXPECT_GE(p, previous) << score;
-    EXPECT_GE(p, 0.0);
-    EXPECT_LE(p, 1.0);
-    EXPECT_EQ(p, b.Predict(score)) << score;
-    previous = p;
-  }
-  EXPECT_LT(a.Predict(0.1f), 0.25);
-  EXPECT_GT(a.Predict(0.9f), 0.75);
-  // Shrinkage: two positives alone do not make certainty.
-  IsotonicCalibration two;
-  two.Fit({{0.5f, 1}, {0.6f, 1}});
-  EXPECT_LE(two.Predict(0.6f), 1.0);
-  IsotonicCalibration empty;
-  EXPECT_EQ(empty.Predict(0.5f), 0.0);
-}
-
 TEST(AdaptivePairGenerator, SimulatedRunFindsTheStrongPairsAndStops) {
   const RingScene scene(40);
   AdaptivePairingOptions options;
@@ -255,6 +179,21 @@ TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
   };
   AdaptivePairingOptions options;
   options.isolated_retries = 0;
+  // The enough rule: every pair within the groups, no cross pair after
+  // round 1 (no probe: the groups are connected, nothing left to connect).
+  AdaptivePairGenerator enough(options, image_ids, candidates);
+  const auto enough_blocks = RunToTheEnd(&enough, verify);
+  size_t enough_within = 0;
+  for (size_t b = 0; b < enough_blocks.size(); ++b) {
+    for (const ImagePair& pair : enough_blocks[b]) {
+      const bool same = group(pair.first) == group(pair.second);
+      enough_within += same ? 1 : 0;
+      EXPECT_TRUE(same || b == 0) << pair.first << "-" << pair.second;
+    }
+  }
+  EXPECT_EQ(enough_within, 2u * 66u);
+  // The recall rule ends with one probe round.
+  options.stop_rule = AdaptiveStopRule::kRecall;
   AdaptivePairGenerator generator(options, image_ids, candidates);
   const auto blocks = RunToTheEnd(&generator, verify);
   size_t within = 0;
@@ -297,6 +236,7 @@ TEST(AdaptivePairGenerator, EveryImageGetsAPairAndIsolatedOnesRetries) {
     scene.candidates.push_back({21, other, 0.01f * static_cast<float>(other)});
   }
   AdaptivePairingOptions options;
+  options.stop_rule = AdaptiveStopRule::kRecall;
   options.initial_per_image = 1;
   options.exploration_fraction = 0;
   options.isolated_retries = 2;
@@ -330,6 +270,130 @@ TEST(AdaptivePairGenerator, EveryImageGetsAPairAndIsolatedOnesRetries) {
     covered.insert(pair.second);
   }
   EXPECT_EQ(covered.size(), scene.image_ids.size());
+}
+
+// A dense capture: images on a line, every pair verifies with more than
+// the strong floor, inliers falling with distance (1000 / d^2, at least 31).
+struct LineScene {
+  explicit LineScene(int num_images) {
+    for (int i = 0; i < num_images; ++i) image_ids.push_back(i + 1);
+    for (int i = 0; i < num_images; ++i) {
+      for (int j = i + 1; j < num_images; ++j) {
+        const float d = static_cast<float>(j - i);
+        candidates.push_back({image_ids[i], image_ids[j], 1.0f / d});
+      }
+    }
+  }
+  static int Distance(const ImagePair& pair) {
+    return std::abs(static_cast<int>(pair.first) -
+                    static_cast<int>(pair.second));
+  }
+  static PairVerification Verify(const ImagePair& pair) {
+    const int d = Distance(pair);
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    verification.config = 2;
+    verification.num_inliers = std::max(31, 1000 / (d * d));
+    return verification;
+  }
+  std::vector<image_t> image_ids;
+  std::vector<PairCandidate> candidates;
+};
+
+TEST(AdaptivePairGenerator, EnoughStopsOnADenseCaptureWhereRecallDoesNot) {
+  const LineScene scene(30);  // 435 pairs, all verifying
+  AdaptivePairingOptions options;
+  options.round_size = 30;
+  options.relative_strength = 0.25;
+  AdaptivePairGenerator enough(options, scene.image_ids, scene.candidates);
+  const auto enough_pairs = Flatten(RunToTheEnd(&enough, &LineScene::Verify));
+  options.stop_rule = AdaptiveStopRule::kRecall;
+  AdaptivePairGenerator recall(options, scene.image_ids, scene.candidates);
+  const auto recall_pairs = Flatten(RunToTheEnd(&recall, &LineScene::Verify));
+  // The recall rule attempts almost everything; enough a fraction, with
+  // every pair of distance <= 2 (>= 1/4 of the best pair's inliers).
+  EXPECT_GT(recall_pairs.size(), 400u);
+  EXPECT_LT(enough_pairs.size(), 150u);
+  size_t close = 0;
+  for (const ImagePair& pair : enough_pairs) {
+    close += LineScene::Distance(pair) <= 2 ? 1 : 0;
+  }
+  EXPECT_EQ(close, 29u + 28u);
+  EXPECT_EQ(enough.Rounds().back().num_components, 1u);
+  // The two end images have only two partners within distance 2.
+  EXPECT_EQ(enough.Rounds().back().num_connected, 28u);
+}
+
+TEST(AdaptivePairGenerator, WeakImagesKeepTryingWithinTheirPatience) {
+  RingScene scene(20);
+  // Image 21: eight low-scored candidates; only the last (lowest) one
+  // verifies, strongly. Image 22: six candidates, none verifies.
+  scene.image_ids.push_back(21);
+  scene.image_ids.push_back(22);
+  for (image_t other = 1; other <= 8; ++other) {
+    scene.candidates.push_back({21, other, 0.09f - 0.01f * other});
+  }
+  for (image_t other = 1; other <= 6; ++other) {
+    scene.candidates.push_back({22, other, 0.09f - 0.01f * other});
+  }
+  const auto verify = [&](const ImagePair& pair) {
+    PairVerification result;
+    result.image_id1 = pair.first;
+    result.image_id2 = pair.second;
+    const image_t weak = std::max(pair.first, pair.second);
+    const image_t other = std::min(pair.first, pair.second);
+    if (weak <= 20) return scene.Verify(pair);
+    if (weak == 21 && other == 8) {
+      result.config = 2;
+      result.num_inliers = 400;
+    }
+    return result;
+  };
+  AdaptivePairingOptions options;
+  options.exploration_fraction = 0;
+  options.image_patience = 8;
+  AdaptivePairGenerator patient(options, scene.image_ids, scene.candidates);
+  std::map<image_t, int> attempts;
+  bool found = false;
+  for (const ImagePair& pair : Flatten(RunToTheEnd(&patient, verify))) {
+    for (const image_t id : {pair.first, pair.second}) ++attempts[id];
+    found |= std::max(pair.first, pair.second) == 21 &&
+             std::min(pair.first, pair.second) == 8;
+  }
+  EXPECT_TRUE(found);          // its partner at rank 8
+  EXPECT_EQ(attempts[21], 8);  // all its candidates, no more exist
+  EXPECT_EQ(attempts[22], 6);  // all its candidates, patience 8 not reached
+  options.image_patience = 4;
+  AdaptivePairGenerator impatient(options, scene.image_ids, scene.candidates);
+  attempts.clear();
+  for (const ImagePair& pair : Flatten(RunToTheEnd(&impatient, verify))) {
+    for (const image_t id : {pair.first, pair.second}) ++attempts[id];
+  }
+  EXPECT_EQ(attempts[21], 4);
+  EXPECT_EQ(attempts[22], 4);
+}
+
+TEST(AdaptivePairGenerator, RejectedPairsAreNeitherStrongNorPartners) {
+  const RingScene scene(24);
+  AdaptivePairingOptions options;
+  const auto rejected = [](image_t a, image_t b) {
+    return std::min(a, b) == 1;  // every pair of image 1
+  };
+  AdaptivePairGenerator generator(options, scene.image_ids, scene.candidates);
+  generator.SetPairRejection(rejected);
+  const auto pairs = Flatten(RunToTheEnd(
+      &generator, [&](const ImagePair& pair) { return scene.Verify(pair); }));
+  size_t strong = 0;
+  for (const ImagePair& pair : pairs) {
+    strong += scene.IsStrongPair(pair.first, pair.second) &&
+                      !rejected(pair.first, pair.second)
+                  ? 1
+                  : 0;
+  }
+  EXPECT_EQ(generator.Rounds().back().total_strong, strong);
+  // Image 1 has no strong partner: 23 others, at least 2 components.
+  EXPECT_GE(generator.Rounds().back().num_components, 2u);
 }
 
 TEST(AdaptivePairGenerator, SameObservationsGiveTheSameBlocks) {
@@ -461,6 +525,12 @@ TEST(AdaptivePairingOptions, CheckNamesTheField) {
          "exploration_fraction");
   expect([](AdaptivePairingOptions* o) { o->isolated_retries = -1; },
          "isolated_retries");
+  expect([](AdaptivePairingOptions* o) { o->relative_strength = 1.5; },
+         "relative_strength");
+  expect([](AdaptivePairingOptions* o) { o->min_strong_partners = -1; },
+         "min_strong_partners");
+  expect([](AdaptivePairingOptions* o) { o->image_patience = -1; },
+         "image_patience");
   EXPECT_NO_THROW(AdaptivePairingOptions().Check());
 }
 

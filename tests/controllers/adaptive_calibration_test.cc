@@ -1,0 +1,144 @@
+#include "controllers/adaptive_calibration.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace colmap_gcn {
+namespace {
+
+struct Bounds {
+  int min_strong_inliers = 30;
+  int max_strong_inliers = 150;
+};
+
+int Cut(const std::vector<size_t>& inliers, const Bounds& bounds) {
+  return LearnStrongInlierCut(
+      inliers, bounds.min_strong_inliers, bounds.max_strong_inliers);
+}
+
+TEST(LearnStrongInlierCut, SplitsABimodalSampleBetweenItsModes) {
+  Bounds options;
+  std::vector<size_t> inliers;
+  // Accidental verifications 15-35, real ones 176-3152 (log-spread).
+  for (int i = 0; i < 60; ++i) inliers.push_back(15 + (i * 7) % 21);
+  for (int i = 0; i < 40; ++i) {
+    inliers.push_back(
+        static_cast<size_t>(176 * std::pow(3152.0 / 176, i / 39.0)));
+  }
+  const int cut = Cut(inliers, options);
+  EXPECT_GT(cut, 35);
+  EXPECT_LE(cut, 150);  // max_strong_inliers
+  options.max_strong_inliers = 1000;
+  const int free_cut = Cut(inliers, options);
+  EXPECT_GT(free_cut, 35);
+  EXPECT_LT(free_cut, 176);
+}
+
+TEST(LearnStrongInlierCut, FloorWithoutTwoModesOrEnoughPairs) {
+  Bounds options;
+  options.min_strong_inliers = 40;
+  // One log-normal-like mode of real pairs: no cut inside it.
+  std::vector<size_t> real;
+  for (int i = 0; i < 200; ++i) {
+    const double z = std::sin(i * 12.9898) * 43758.5453;
+    const double u = z - std::floor(z);
+    const double v = std::fmod(i * 0.61803398875, 1.0);
+    real.push_back(static_cast<size_t>(
+        std::exp(6.0 + 0.6 * (u + v + std::fmod(i * 0.41421356, 1.0) - 1.5))));
+  }
+  EXPECT_EQ(Cut(real, options), 40);
+  EXPECT_EQ(Cut({20, 20, 500, 600}, options), 40);
+  // Two modes of real pairs (60-90 and 400-900 inliers): no accidents.
+  std::vector<size_t> weak_and_strong;
+  for (int i = 0; i < 40; ++i) {
+    weak_and_strong.push_back(60 + (i * 7) % 31);
+    weak_and_strong.push_back(400 + (i * 13) % 501);
+  }
+  EXPECT_EQ(Cut(weak_and_strong, options), 40);
+  EXPECT_EQ(Cut({}, options), 40);
+}
+
+TEST(IsotonicCalibration, MonotoneShrunkAndDeterministic) {
+  std::vector<std::pair<float, int>> samples;
+  for (int i = 0; i < 100; ++i) {
+    const float score = static_cast<float>(i) / 100.f;
+    // Mostly positive above 0.5, with violations on both sides.
+    const int label = (score > 0.5f) != (i % 9 == 0) ? 1 : 0;
+    samples.emplace_back(score, label);
+  }
+  IsotonicCalibration a;
+  a.Fit(samples);
+  std::vector<std::pair<float, int>> shuffled(samples.rbegin(), samples.rend());
+  std::rotate(shuffled.begin(), shuffled.begin() + 37, shuffled.end());
+  IsotonicCalibration b;
+  b.Fit(shuffled);
+  double previous = -1;
+  for (int i = -10; i <= 110; ++i) {
+    const float score = static_cast<float>(i) / 100.f;
+    const double p = a.Predict(score);
+    EXPECT_GE(p, previous) << score;
+    EXPECT_GE(p, 0.0);
+    EXPECT_LE(p, 1.0);
+    EXPECT_EQ(p, b.Predict(score)) << score;
+    previous = p;
+  }
+  EXPECT_LT(a.Predict(0.1f), 0.25);
+  EXPECT_GT(a.Predict(0.9f), 0.75);
+  // Shrinkage: two positives alone do not make certainty.
+  IsotonicCalibration two;
+  two.Fit({{0.5f, 1}, {0.6f, 1}});
+  EXPECT_LE(two.Predict(0.6f), 1.0);
+  IsotonicCalibration empty;
+  EXPECT_EQ(empty.Predict(0.5f), 0.0);
+}
+
+TEST(FitLogOddsOffset, RaisesAClassThatVerifiesMoreThanPredicted) {
+  // Ten pairs predicted at 0.5, all positive: a raise, bounded by the prior.
+  const std::vector<double> logits(10, 0.0);
+  const double raise = FitLogOddsOffset(logits, 10);
+  EXPECT_GT(raise, 0.5);
+  EXPECT_LT(raise, 6.0);
+  EXPECT_LT(FitLogOddsOffset(logits, 0), -0.5);
+  EXPECT_NEAR(FitLogOddsOffset(logits, 5), 0.0, 1e-6);
+  EXPECT_NEAR(Sigmoid(Logit(0.3)), 0.3, 1e-9);
+}
+
+TEST(IsRelativelyStrong, AgainstTheWeakerImagesBestPair) {
+  // Best pairs of 800 and 200 inliers: the reference is 200.
+  EXPECT_TRUE(IsRelativelyStrong(50, 800, 200, 0.25));
+  EXPECT_FALSE(IsRelativelyStrong(49, 800, 200, 0.25));
+  // A pair is its images' best: always strong.
+  EXPECT_TRUE(IsRelativelyStrong(300, 300, 900, 0.25));
+  // Ratio 0 asks nothing; an image without a verified pair neither.
+  EXPECT_TRUE(IsRelativelyStrong(1, 800, 800, 0.0));
+  EXPECT_TRUE(IsRelativelyStrong(1, 0, 800, 0.5));
+}
+
+TEST(PartnersStillWanted, UntilEnoughPartnersOrOutOfPatience) {
+  EXPECT_EQ(PartnersStillWanted(0, 0, 3, 5), 3);
+  EXPECT_EQ(PartnersStillWanted(2, 0, 3, 5), 1);
+  EXPECT_EQ(PartnersStillWanted(3, 0, 3, 5), 0);
+  EXPECT_EQ(PartnersStillWanted(7, 0, 3, 5), 0);
+  // Patience left bounds it: 4 failures of 5 leave one attempt.
+  EXPECT_EQ(PartnersStillWanted(0, 4, 3, 5), 1);
+  EXPECT_EQ(PartnersStillWanted(0, 5, 3, 5), 0);
+  EXPECT_EQ(PartnersStillWanted(0, 9, 3, 5), 0);
+  EXPECT_EQ(PartnersStillWanted(0, 0, 0, 5), 0);
+}
+
+TEST(CountComponents, IsolatedVerticesAndChains) {
+  EXPECT_EQ(CountComponents({}), 0u);
+  EXPECT_EQ(CountComponents({{}, {}, {}}), 3u);
+  // 0-1-2 chain, 3-4 pair, 5 alone; lists symmetric.
+  const std::vector<std::vector<int>> graph = {{1}, {0, 2}, {1}, {4}, {3}, {}};
+  EXPECT_EQ(CountComponents(graph), 3u);
+  // A cycle counts once.
+  EXPECT_EQ(CountComponents({{1, 2}, {0, 2}, {0, 1}}), 1u);
+}
+
+}  // namespace
+}  // namespace colmap_gcn
