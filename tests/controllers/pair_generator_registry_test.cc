@@ -11,6 +11,7 @@
 #include "controllers/gcn_matching.h"
 #include "controllers/vocab_tree_pairing.h"
 #include "pairing/gcn_model_pairing.h"
+#include "pairing/imported_pairing.h"
 #include "pairing/knn_pairing.h"
 #include "pairing/pairing.h"
 #include "test_utils.h"
