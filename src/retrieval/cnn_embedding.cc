@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -543,7 +544,10 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
   const int num_threads = EffectiveNumThreads(options.num_threads);
   const Timer timer;
   double last_write = 0;
-  size_t next_progress = options.progress_every;
+  std::optional<ProgressLogger> progress;
+  if (options.progress_every > 0) {
+    progress.emplace(images.size(), "CNN embedding", "images");
+  }
   // Chunks: files are read and hashed in parallel, misses embedded, and
   // every ~30 s the cache is rewritten so an interrupted run resumes.
   const size_t chunk_size =
@@ -616,19 +620,7 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
         }
         local_stats.num_computed += misses.size();
       }
-      if (options.progress_every > 0 &&
-          (end >= next_progress || end == images.size())) {
-        while (next_progress <= end) next_progress += options.progress_every;
-        char line[160];
-        std::snprintf(line,
-                      sizeof(line),
-                      "CNN embedding: %zu/%zu images (%zu cached), %.1f s",
-                      end,
-                      images.size(),
-                      local_stats.num_cached,
-                      timer.ElapsedSeconds());
-        LOG(INFO) << line;
-      }
+      if (progress) progress->Update(end);
       if (!cache_path.empty() && local_stats.num_computed > 0 &&
           end < images.size() && timer.ElapsedSeconds() - last_write > 30) {
         write_cache(end);
