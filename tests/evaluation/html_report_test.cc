@@ -11,6 +11,7 @@
 #include "scene/model_writer.h"
 #include "test_utils.h"
 #include "util/file.h"
+#include "util/string.h"
 
 namespace colmap_gcn {
 namespace {
