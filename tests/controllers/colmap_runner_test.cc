@@ -116,6 +116,7 @@ class CapturingSink : public LogSink {
 TEST(ColmapRunner, SummarisesColmapsProgressUnlessVerbose) {
   TemporaryDirectory dir;
   const test::FakeColmap fake(dir.Path());
+  // A command the fake does nothing for, printing feature_extractor's lines.
   fake.PrintOnEveryRun(
       "Processed file [1/2]\n  Features: 10\nProcessed file [2/2]\n"
       "  Features: 12\nElapsed time: 0.001 [minutes]\n");
@@ -125,7 +126,7 @@ TEST(ColmapRunner, SummarisesColmapsProgressUnlessVerbose) {
   {
     CapturingSink sink;
     const ScopedLogSink scoped(&sink);
-    ColmapRunner(options).Run("feature_extractor", {});
+    ColmapRunner(options).Run("model_analyzer", {});
     // COLMAP's lines go only to the log file; a step this quick is not
     // even summarised (ProgressLogger::kQuietSeconds).
     EXPECT_TRUE(sink.messages.empty()) << sink.messages[0];
@@ -135,9 +136,9 @@ TEST(ColmapRunner, SummarisesColmapsProgressUnlessVerbose) {
   options.verbose = true;
   CapturingSink sink;
   const ScopedLogSink scoped(&sink);
-  ColmapRunner(options).Run("feature_extractor", {});
+  ColmapRunner(options).Run("model_analyzer", {});
   EXPECT_EQ(sink.messages.size(), 5u);
-  EXPECT_EQ(sink.messages[1], "[colmap feature_extractor]   Features: 10");
+  EXPECT_EQ(sink.messages[1], "[colmap model_analyzer]   Features: 10");
 }
 
 TEST(FindColmapExecutable, HonoursHintAndRejectsMissing) {
