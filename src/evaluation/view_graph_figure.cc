@@ -70,7 +70,7 @@ void DrawLayout(cv::Mat* image,
     figure::DrawLine(image, point(a), point(b), figure::kGreen, 2, false);
   }
   const int radius = std::clamp(
-      static_cast<int>(160 / std::sqrt(std::max<size_t>(1, n))), 3, 9);
+      static_cast<int>(60 / std::sqrt(std::max<size_t>(1, n))), 3, 8);
   for (size_t i = 0; i < n; ++i) {
     const bool unregistered = graph.registration_known &&
                               graph.registered.count(graph.image_names[i]) == 0;
@@ -81,7 +81,7 @@ void DrawLayout(cv::Mat* image,
       cv::circle(
           *image, point(i), radius, figure::kBlue, cv::FILLED, cv::LINE_AA);
     }
-    if (n <= 80) {
+    if (n <= 50) {
       figure::Text(image,
                    std::to_string(i),
                    point(i) + cv::Point(radius + 1, -radius - 1),
