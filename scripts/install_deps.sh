@@ -17,6 +17,8 @@ PACKAGES=(
   python3 python3-numpy python3-torch
   # Measuring whole commands; formatting.
   hyperfine time clang-format
+  # Rendering the HTML report in a real browser (tests/evaluation, headless).
+  chromium
   # libFuzzer targets (scripts/fuzz.sh): clang and its compiler-rt runtimes.
   clang libclang-rt-14-dev
 )

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <regex>
 
 #include "util/error.h"
@@ -46,13 +47,6 @@ std::string TailLines(const std::string& text, size_t num_lines) {
   return StringJoin(lines, " | ");
 }
 
-// COLMAP lines worth showing as progress when not verbose.
-bool IsProgressLine(const std::string& line) {
-  static const std::regex kProgress(
-      R"(Processed file \[|Matching block \[|Registering image #|Elapsed time|Importing matches)");
-  return std::regex_search(line, kProgress);
-}
-
 // SQLite's messages (sqlite3_errstr) for the failures a user can act on, in
 // the user's words.
 struct SqliteCause {
@@ -70,6 +64,51 @@ const SqliteCause kSqliteCauses[] = {
 };
 
 }  // namespace
+
+bool ParseColmapProgress(const std::string& line, ColmapProgress* progress) {
+  struct Pattern {
+    std::regex regex;
+    const char* label;
+    const char* unit;
+  };
+  static const Pattern kPatterns[] = {
+      {std::regex(R"(Processed file \[(\d+)/(\d+)\])"),
+       "extracting features",
+       "images"},
+      {std::regex(R"(Matching image \[(\d+)/(\d+)\])"), "matching", "images"},
+      {std::regex(R"(Indexing image \[(\d+)/(\d+)\])"), "indexing", "images"},
+      {std::regex(R"(Querying for image .*\[(\d+)/(\d+)\])"),
+       "retrieving",
+       "images"},
+  };
+  std::smatch match;
+  for (const Pattern& pattern : kPatterns) {
+    if (std::regex_search(line, match, pattern.regex)) {
+      *progress = {pattern.label,
+                   pattern.unit,
+                   std::stoul(match[1].str()),
+                   std::stoul(match[2].str())};
+      return true;
+    }
+  }
+  // Exhaustive matching: block (i, j) of n x m, row-major.
+  static const std::regex kBlock2D(
+      R"(Matching block \[(\d+)/(\d+), (\d+)/(\d+)\])");
+  if (std::regex_search(line, match, kBlock2D)) {
+    const size_t i = std::stoul(match[1].str());
+    const size_t n = std::stoul(match[2].str());
+    const size_t j = std::stoul(match[3].str());
+    const size_t m = std::stoul(match[4].str());
+    *progress = {"matching", "blocks", (i - 1) * m + j, n * m};
+    return true;
+  }
+  static const std::regex kRegistering(R"(Registering image #\d+ \((\d+)\))");
+  if (std::regex_search(line, match, kRegistering)) {
+    *progress = {"registering", "images", std::stoul(match[1].str()), 0};
+    return true;
+  }
+  return false;
+}
 
 std::string DiagnoseColmapOutput(const std::string& output) {
   // The first report is the cause; later lines are mostly its consequences.
@@ -310,13 +349,32 @@ std::string ColmapRunner::Run(const std::string& command,
   }
   ++num_runs_;
   std::string output;
+  // One progress logger per stage COLMAP reports (the mapper's registering
+  // follows no other stage; exhaustive matching has one).
+  std::unique_ptr<ProgressLogger> progress;
+  std::string progress_key;
   const int status =
       RunProcess(exe_, args, &output, [&](const std::string& line) {
-        if (options_.verbose ||
-            (options_.show_progress && IsProgressLine(line))) {
+        if (options_.verbose) {
           LOG(INFO) << "[colmap " << command << "] " << line;
+          return;
         }
+        ColmapProgress parsed;
+        if (!options_.show_progress || !ParseColmapProgress(line, &parsed)) {
+          return;
+        }
+        const std::string key =
+            parsed.label + "/" + std::to_string(parsed.total);
+        if (progress == nullptr || key != progress_key ||
+            parsed.done < progress->NumDone()) {
+          progress.reset();  // logs the previous stage's final line
+          progress = std::make_unique<ProgressLogger>(
+              parsed.total, parsed.label, parsed.unit);
+          progress_key = key;
+        }
+        progress->Update(parsed.done);
       });
+  progress.reset();
   if (log.is_open()) {
     log << output << "[exit " << status << "]\n";
   }

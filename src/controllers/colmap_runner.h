@@ -15,10 +15,11 @@ struct ColmapRunnerOptions {
   // keeps no log.
   std::string log_path = "";
 
-  // Echo all of COLMAP's output (otherwise only its progress lines).
+  // Echo all of COLMAP's output (otherwise its progress is summarised:
+  // "extracting features: 17/24 images (71 %), 3.1 images/s, ETA 2 s").
   bool verbose = false;
 
-  // Echo progress lines at all.
+  // Summarise COLMAP's progress at all.
   bool show_progress = true;
 };
 
@@ -70,6 +71,20 @@ std::string DiagnoseColmapOutput(const std::string& output);
 // (FindColmapExecutable(colmap_exe)) only when args hold such options.
 void CheckColmapArguments(const std::vector<std::string>& args,
                           const std::string& colmap_exe = "");
+// A progress count in one line of COLMAP's output.
+struct ColmapProgress {
+  std::string label;  // "extracting features", "matching", "registering"
+  std::string unit;   // "images", "blocks"
+  size_t done = 0;
+  size_t total = 0;  // 0: unknown (the mapper's registered images)
+};
+
+// Reads COLMAP 3.8's progress lines ("Processed file [3/24]", exhaustive's
+// "Matching block [1/3, 2/3]", "Matching image [4/24]", "Indexing image
+// [..]", "Registering image #7 (5)"); false for others. matches_importer's
+// "Matching block [1/1]" comes only at its end: MatchPairGenerator counts
+// those pairs itself.
+bool ParseColmapProgress(const std::string& line, ColmapProgress* progress);
 
 // The arguments COLMAP 3.8 needs to run `command` without a GPU/display,
 // unless args already set them.

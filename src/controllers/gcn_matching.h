@@ -43,6 +43,10 @@ struct GcnMatchingOptions {
     // Show all of COLMAP's output, not only progress.
     bool verbose = false;
 
+    // gcn_matcher writes a picture of the view graph next to the pairs file
+    // (exe/gcn_matcher.h: ViewGraphFigurePath).
+    bool write_figures = true;
+
     // COLMAP's --SiftMatching.min_num_inliers, read once here: passed to
     // its verification and used to count verified pairs (UM).
     int min_num_inliers = kDefaultMinNumInliers;

@@ -100,6 +100,7 @@ GeometryMap RunMatchesImporter(const ColmapRunner& colmap,
   const size_t num_blocks = (pairs.size() + block_size - 1) / block_size;
   const InterruptCheckpoints checkpoints;
   GeometryMap geometries;
+  ProgressLogger progress(pairs.size(), "matching", "pairs");
   for (size_t block = 0; block < num_blocks; ++block) {
     const auto begin = pairs.begin() + block * block_size;
     const auto end =
@@ -134,6 +135,7 @@ GeometryMap RunMatchesImporter(const ColmapRunner& colmap,
                  work_path,
                  " and the next run resumes from there");
     }
+    progress.Update(end - pairs.begin());
     if (stop_between_blocks && block + 1 < num_blocks) {
       StopPointForTests("matching");
     }

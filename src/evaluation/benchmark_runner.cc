@@ -166,7 +166,6 @@ const ColmapRunner& BenchmarkRunner::Colmap(const SceneContext& scene) {
     runner_options.colmap_exe = options_.colmap_exe;
     runner_options.log_path = log_path;
     runner_options.verbose = options_.verbose;
-    runner_options.show_progress = options_.verbose;
     colmap_ = std::make_unique<ColmapRunner>(runner_options);
     colmap_log_ = log_path;
   }
@@ -208,8 +207,14 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
   pair_set_owners_.clear();
   BuildLabels(&scene, &result);
 
+  ProgressLogger method_progress(
+      methods_.size(), scene.dataset.name + ": methods", "methods");
   for (size_t m = 0; m < methods_.size(); ++m) {
+    method_progress.Update(m);
     const BenchmarkMethod& method = methods_[m];
+    Progress(scene.dataset.name,
+             "method " + std::to_string(m + 1) + "/" +
+                 std::to_string(methods_.size()) + ": " + method.spec);
     // On small scenes several k are capped to the same N - 1: the pairs
     // are identical, so the first such run stands for the others.
     const int k = method.EffectiveK(scene.images.size());
@@ -269,6 +274,7 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
     }
     result.methods.push_back(method_result);
   }
+  method_progress.Update(methods_.size());
   WritePrecisionRecallFigure(options_.output_path, methods_, &result);
   return result;
 }
@@ -283,6 +289,7 @@ BenchmarkResults BenchmarkRunner::Run() {
   }
   CreateDirIfNotExists(options_.output_path);
   const std::vector<DatasetSpec> specs = ParseDatasetSpecs(options_.datasets);
+  ProgressLogger progress(specs.size(), "benchmark", "scenes");
   for (size_t i = 0; i < specs.size(); ++i) {
     Progress(
         specs[i].name,
@@ -303,6 +310,7 @@ BenchmarkResults BenchmarkRunner::Run() {
     // The report is rewritten after every scene: partial results are
     // readable while a long run continues.
     WriteBenchmarkReport(results, options_.output_path);
+    progress.Increment();
   }
   return results;
 }

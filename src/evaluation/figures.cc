@@ -5,37 +5,20 @@
 #include <map>
 #include <set>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "evaluation/figure_drawing.h"
 #include "util/error.h"
 
 namespace colmap_gcn {
 namespace {
 
-void WritePng(const std::string& path, const cv::Mat& image) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, image);
-  } catch (const cv::Exception& error) {
-    ThrowError("cannot write ", path, ": ", error.what());
-  }
-  if (!ok) ThrowError("cannot write ", path);
-}
+using namespace figure;  // NOLINT: the drawing helpers and colours
 
 std::pair<std::string, std::string> Ordered(const ImageNamePair& pair) {
   return pair.first < pair.second ? pair
                                   : ImageNamePair(pair.second, pair.first);
 }
-
-const cv::Scalar kWhite(255, 255, 255);
-const cv::Scalar kBlack(0, 0, 0);
-// BGR.
-const cv::Scalar kGreen(60, 170, 40);
-const cv::Scalar kOlive(40, 150, 170);
-const cv::Scalar kRed(40, 40, 220);
-const cv::Scalar kLightGrey(215, 215, 215);
-const cv::Scalar kDarkGrey(90, 90, 90);
 
 }  // namespace
 
@@ -44,32 +27,22 @@ void WriteViewGraphImage(const std::string& path,
                          const std::vector<ImageNamePair>& attempted,
                          const std::vector<ImageNamePair>& verified,
                          const PairLabels& labels,
-                         const PairLabelOptions& label_options) {
+                         const PairLabelOptions& label_options,
+                         const std::string& title) {
   const int n = static_cast<int>(image_names.size());
-  // At least ~600 px wide so small scenes stay readable; at least 1 px per
-  // image for large ones.
-  const int cell = std::max(1, 600 / std::max(1, n));
-  const int margin = 20;
-  const int size = n * cell;
-  cv::Mat image(size + 2 * margin, size + 2 * margin, CV_8UC3, kWhite);
   std::map<std::string, int> index;
   for (int i = 0; i < n; ++i) index[image_names[i]] = i;
-  const auto fill = [&](int row, int col, const cv::Scalar& colour) {
-    cv::rectangle(
-        image,
-        cv::Rect(margin + col * cell, margin + row * cell, cell, cell),
-        colour,
-        cv::FILLED);
-  };
+  std::vector<std::tuple<int, int, cv::Scalar>> cells;
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < i; ++j) {
       if (labels.IsMatchable(image_names[i], image_names[j], label_options)) {
-        fill(i, j, kDarkGrey);
+        cells.emplace_back(i, j, kDarkGrey);
       }
     }
   }
   std::set<ImageNamePair> verified_set;
   for (const auto& pair : verified) verified_set.insert(Ordered(pair));
+  size_t num_attempted = 0, num_verified = 0;
   for (const auto& pair : attempted) {
     const ImageNamePair ordered = Ordered(pair);
     const auto a = index.find(ordered.first);
@@ -77,10 +50,12 @@ void WriteViewGraphImage(const std::string& path,
     if (a == index.end() || b == index.end() || a->second == b->second) {
       continue;
     }
+    ++num_attempted;
     const int row = std::min(a->second, b->second);
     const int col = std::max(a->second, b->second);
     cv::Scalar colour = kLightGrey;
     if (verified_set.count(ordered) > 0) {
+      ++num_verified;
       if (labels.SharesNothing(ordered.first, ordered.second)) {
         colour = kRed;
       } else if (labels.IsMatchable(
@@ -91,15 +66,43 @@ void WriteViewGraphImage(const std::string& path,
         colour = kOlive;
       }
     }
-    fill(row, col, colour);
+    cells.emplace_back(row, col, colour);
   }
-  cv::rectangle(
-      image, cv::Rect(margin - 1, margin - 1, size + 2, size + 2), kBlack, 1);
-  cv::line(image,
-           cv::Point(margin, margin),
-           cv::Point(margin + size, margin + size),
-           kBlack,
-           1);
+  constexpr int kSide = 560, kLeft = 90, kTop = 90, kWidth = 800;
+  cv::Mat image(kTop + kSide + 150, kWidth, CV_8UC3, kWhite);
+  Text(&image,
+       title.empty() ? "View graph" : title,
+       cv::Point(20, 30),
+       0.65,
+       kBlack,
+       2);
+  Text(&image,
+       std::to_string(n) + " images; above the diagonal: the " +
+           std::to_string(num_attempted) + " pairs matched (" +
+           std::to_string(num_verified) + " verified)",
+       cv::Point(20, 55),
+       0.45,
+       kDarkGrey);
+  Text(&image,
+       "below the diagonal: the pairs the ground truth calls matchable",
+       cv::Point(20, 75),
+       0.45,
+       kDarkGrey);
+  DrawMatrix(&image,
+             cv::Rect(kLeft, kTop, kSide, kSide),
+             n,
+             cells,
+             "image number (name order)",
+             "image number (name order)");
+  DrawLegend(&image,
+             cv::Point(kLeft, kTop + kSide + 55),
+             kWidth - kLeft - 20,
+             {{kGreen, "verified, matchable"},
+              {kOlive, "verified, below the label thresholds"},
+              {kRed, "verified, images share nothing (wrong)"},
+              {kLightGrey, "matched, rejected by verification"},
+              {kDarkGrey, "matchable by the ground truth"},
+              {kWhite, "not matched / not matchable"}});
   WritePng(path, image);
 }
 
@@ -110,6 +113,7 @@ class LineChart {
  public:
   LineChart(const std::string& title,
             const std::string& x_label,
+            const std::string& y_label,
             const std::vector<double>& x_ticks,
             bool log_x)
       : image_(kHeight, kWidth, CV_8UC3, kWhite), log_x_(log_x) {
@@ -133,7 +137,7 @@ class LineChart {
       cv::line(image_, Pt(x_min_, v), Pt(x_max_, v), kLightGrey, 1);
       char label[16];
       std::snprintf(label, sizeof(label), "%.2f", v);
-      Text(label, cv::Point(10, Pt(x_min_, v).y + 5));
+      Text(label, cv::Point(32, Pt(x_min_, v).y + 5));
     }
     for (const double x : x_ticks) {
       char label[16];
@@ -141,6 +145,9 @@ class LineChart {
       Text(label, cv::Point(Pt(x, 0).x - 8, kTop + PlotH() + 18));
     }
     Text(x_label, cv::Point(kLeft + PlotW() / 2 - 40, kHeight - 12), 0.45);
+    VerticalText(&image_,
+                 y_label,
+                 cv::Point(6, kTop + PlotH() / 2 + TextWidth(y_label) / 2));
   }
 
   cv::Point Pt(double x, double y) const {
@@ -202,7 +209,7 @@ class LineChart {
 
  private:
   static constexpr int kWidth = 700, kHeight = 420;
-  static constexpr int kLeft = 60, kRight = 230, kTop = 40, kBottom = 50;
+  static constexpr int kLeft = 80, kRight = 230, kTop = 40, kBottom = 50;
   static constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
   static int PlotW() { return kWidth - kLeft - kRight; }
   static int PlotH() { return kHeight - kTop - kBottom; }
@@ -228,8 +235,11 @@ void WritePrecisionRecallPlot(
   std::set<double> ticks;
   for (const auto& s : series) ticks.insert(s.k.begin(), s.k.end());
   if (ticks.empty()) ticks.insert(1);
-  LineChart chart(
-      title, "k (log scale)", {ticks.begin(), ticks.end()}, /*log_x=*/true);
+  LineChart chart(title,
+                  "k: pairs per image (log scale)",
+                  "precision (solid), recall (dashed)",
+                  {ticks.begin(), ticks.end()},
+                  /*log_x=*/true);
   size_t colour_idx = 0;
   for (const auto& s : series) {
     const cv::Scalar colour = LineChart::Colour(colour_idx++);
@@ -260,8 +270,9 @@ void WriteLinePlot(const std::string& path,
                    const std::string& title,
                    const std::string& x_label,
                    const std::vector<double>& x,
-                   const std::vector<LinePlotSeries>& series) {
-  LineChart chart(title, x_label, x, /*log_x=*/false);
+                   const std::vector<LinePlotSeries>& series,
+                   const std::string& y_label) {
+  LineChart chart(title, x_label, y_label, x, /*log_x=*/false);
   for (size_t i = 0; i < series.size(); ++i) {
     const cv::Scalar colour = LineChart::Colour(i);
     chart.Series(x, series[i].y, colour, series[i].dashed);

@@ -14,13 +14,15 @@ namespace colmap_gcn {
 // olive, verified although the images share nothing (wrong) red, attempted
 // but not verified light grey. Lower triangle: the labels -- matchable
 // pairs dark grey, so missed pairs stand out against the upper triangle.
-// Written as PNG; throws Error if it cannot be written.
+// With a title, counts, labelled axes and a legend of every colour. Written
+// as PNG; throws Error if it cannot be written.
 void WriteViewGraphImage(const std::string& path,
                          const std::vector<std::string>& image_names,
                          const std::vector<ImageNamePair>& attempted,
                          const std::vector<ImageNamePair>& verified,
                          const PairLabels& labels,
-                         const PairLabelOptions& label_options);
+                         const PairLabelOptions& label_options,
+                         const std::string& title = "");
 
 // One precision/recall curve against k per method family.
 struct PrecisionRecallSeries {
@@ -51,6 +53,7 @@ void WriteLinePlot(const std::string& path,
                    const std::string& title,
                    const std::string& x_label,
                    const std::vector<double>& x,
-                   const std::vector<LinePlotSeries>& series);
+                   const std::vector<LinePlotSeries>& series,
+                   const std::string& y_label = "value");
 
 }  // namespace colmap_gcn

@@ -18,6 +18,7 @@
 #include "exe/gcn_model_evaluator.h"
 #include "exe/gcn_pair_exporter.h"
 #include "exe/gcn_reconstructor.h"
+#include "exe/gcn_report.h"
 #include "exe/gcn_synth.h"
 #include "exe/gcn_train.h"
 #include "exe/gcn_vocab_tree_builder.h"
@@ -34,6 +35,7 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
   commands.emplace_back("gcn_matcher", &RunGcnMatcher);
   commands.emplace_back("gcn_reconstructor", &RunGcnReconstructor);
   commands.emplace_back("gcn_pair_exporter", &RunGcnPairExporter);
+  commands.emplace_back("gcn_report", &RunGcnReport);
   commands.emplace_back("gcn_synth", &RunGcnSynth);
   commands.emplace_back("gcn_train", &RunGcnTrain);
   commands.emplace_back("gcn_model_evaluator", &RunGcnModelEvaluator);

@@ -7,6 +7,7 @@
 #include "controllers/gcn_matching.h"
 #include "controllers/pair_generators.h"
 #include "evaluation/benchmark.h"
+#include "evaluation/html_report.h"
 #include "evaluation/method.h"
 #include "evaluation/report.h"
 #include "exe/gcn_matcher.h"
@@ -125,8 +126,12 @@ int RunGcnBenchmark(int argc, char** argv) {
 
   const BenchmarkResults results = RunBenchmark(options);
   std::cout << FormatBenchmarkReport(results) << std::flush;
+  HtmlReportOptions report_options;
+  report_options.workspace_path = options.output_path;
+  report_options.min_num_inliers =
+      options.gcn_matching.matching.min_num_inliers;
   std::cerr << "[gcn_benchmark] report: " << options.output_path
-            << "/report.md\n";
+            << "/report.md and " << WriteHtmlReport(report_options) << "\n";
   // A failed scene or method does not cost the others' results, but the
   // run failed: exit 1 unless --Benchmark.keep_going.
   const std::vector<std::string> failures = BenchmarkFailures(results);

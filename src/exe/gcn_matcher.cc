@@ -3,7 +3,12 @@
 #include "controllers/colmap_runner.h"
 #include "controllers/gcn_matching.h"
 #include "controllers/pair_generators.h"
+#include "evaluation/view_graph_figure.h"
+#include "pairing/pairs_io.h"
+#include "scene/database.h"
 #include "util/error.h"
+#include "util/file.h"
+#include "util/logging.h"
 #include "util/option_manager.h"
 #include "util/string.h"
 
@@ -28,10 +33,46 @@ void AddGcnMatchingOptions(OptionManager* manager,
                             "log of COLMAP's full output");
   manager->AddDefaultOption(
       "GcnMatching.verbose", &matching.verbose, "show all of COLMAP's output");
+  manager->AddDefaultOption("GcnMatching.write_figures",
+                            &matching.write_figures,
+                            "write a PNG of the view graph next to the "
+                            "pairs file");
   manager->AddDefaultOption("SiftMatching.min_num_inliers",
                             &matching.min_num_inliers,
                             "COLMAP's verification threshold; also what a "
                             "verified pair (UM) needs");
+}
+
+std::string ViewGraphFigurePath(const std::string& database_path,
+                                const GcnMatchingOptions& options) {
+  std::string path = options.matching.pairs_path.empty()
+                         ? database_path + ".pairs.txt"
+                         : options.matching.pairs_path;
+  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".txt") == 0) {
+    path.resize(path.size() - 4);
+  }
+  return path + "_view_graph.png";
+}
+
+std::string WriteGcnMatchingFigure(const std::string& database_path,
+                                   const GcnMatchingOptions& options) {
+  if (!options.matching.write_figures) return "";
+  const std::string pairs_path = options.matching.pairs_path.empty()
+                                     ? database_path + ".pairs.txt"
+                                     : options.matching.pairs_path;
+  MatchedViewGraph graph;
+  {
+    const Database database(database_path);
+    graph.image_names = ReadImageNamesSorted(database);
+    graph.verified =
+        ReadVerifiedImagePairs(database, options.matching.min_num_inliers);
+  }
+  if (ExistsFile(pairs_path)) graph.attempted = ReadPairsFile(pairs_path);
+  graph.title = "View graph of " + options.pairing + " pairing";
+  const std::string path = ViewGraphFigurePath(database_path, options);
+  WriteMatchedViewGraphImage(path, graph);
+  LOG(INFO) << "view graph picture: " << path;
+  return path;
 }
 
 int RunGcnMatcher(int argc, char** argv) {
@@ -51,6 +92,7 @@ int RunGcnMatcher(int argc, char** argv) {
   manager.Check([&] { options.Check(); });
   CheckColmapArguments(options.colmap_args);
   PrintGcnMatchingReport(RunGcnMatching(database_path, options));
+  WriteGcnMatchingFigure(database_path, options);
   return 0;
 }
 

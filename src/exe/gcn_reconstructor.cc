@@ -1,11 +1,16 @@
 #include "exe/gcn_reconstructor.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "controllers/colmap_runner.h"
 #include "controllers/feature_extraction.h"
 #include "controllers/gcn_matching.h"
 #include "controllers/incremental_mapping.h"
+#include "evaluation/html_report.h"
+#include "evaluation/json_file.h"
 #include "exe/gcn_matcher.h"
 #include "scene/reconstruction.h"
 #include "scene/reconstruction_stats.h"
@@ -16,6 +21,112 @@
 #include "util/string.h"
 
 namespace colmap_gcn {
+namespace {
+
+// The run as the report shows it: the command line, the options given on
+// it, the stages' times and the matching counts.
+Json RunSummary(int argc,
+                char** argv,
+                const ColmapRunner& colmap,
+                const GcnMatchingOptions& matching_options,
+                const std::string& database_path,
+                const std::vector<std::pair<std::string, double>>& stages,
+                const GcnMatchingReport& matching) {
+  std::vector<std::string> command = {"colmap"};
+  Json settings = Json::object();
+  for (int i = 0; i < argc; ++i) {
+    command.push_back(ShellQuote(argv[i]));
+    const std::string arg = argv[i];
+    if (StringStartsWith(arg, "--") && i + 1 < argc) {
+      settings[arg.substr(2)] = argv[i + 1];
+    }
+  }
+  settings["GcnMatching.pairing"] = matching_options.pairing;
+  settings["COLMAP"] = colmap.Executable() + " " + colmap.Version();
+  Json run;
+  run["command"] = StringJoin(command, " ");
+  run["settings"] = settings;
+  run["pairing"] = matching_options.pairing;
+  run["num_images"] = matching.num_images;
+  run["tam"] = matching.matching.num_attempted_pairs;
+  run["um"] = matching.matching.num_verified_pairs;
+  run["pairs_path"] = matching_options.matching.pairs_path.empty()
+                          ? database_path + ".pairs.txt"
+                          : matching_options.matching.pairs_path;
+  Json times = Json::array();
+  for (const auto& [name, seconds] : stages) {
+    times.push_back({{"name", name}, {"seconds", seconds}});
+  }
+  run["stages"] = times;
+  return run;
+}
+
+// The models' table; returns the largest model's registered images.
+size_t PrintModels(const std::vector<std::string>& model_paths,
+                   size_t num_images) {
+  std::printf("%-28s %10s %8s %12s %10s %10s\n",
+              "model",
+              "registered",
+              "points",
+              "observations",
+              "track_len",
+              "reproj_px");
+  size_t largest = 0;
+  for (const std::string& model_path : model_paths) {
+    Reconstruction reconstruction;
+    reconstruction.Read(model_path);
+    const ReconstructionStatistics stats =
+        ComputeReconstructionStatistics(reconstruction);
+    largest = std::max(largest, stats.num_registered_images);
+    std::printf("%-28s %5zu/%-4zu %8zu %12zu %10.2f %10.3f\n",
+                model_path.c_str(),
+                stats.num_registered_images,
+                num_images,
+                stats.num_points3D,
+                stats.num_observations,
+                stats.mean_track_length,
+                stats.mean_reprojection_error);
+  }
+  return largest;
+}
+
+// What the pair selection saved, at the matching rate measured in this run.
+void PrintSummary(const GcnMatchingReport& matching,
+                  size_t registered,
+                  const std::string& report_path) {
+  const size_t n = matching.num_images;
+  const size_t exhaustive = n * (n - 1) / 2;
+  const size_t tam = matching.matching.num_attempted_pairs;
+  const double seconds = matching.matching.matching_seconds;
+  std::printf("\nsummary\n");
+  std::printf(
+      "  pairs matched     %zu of the %zu an exhaustive matching "
+      "tries (%.0f %%), %zu verified\n",
+      tam,
+      exhaustive,
+      exhaustive == 0 ? 0.0 : 100.0 * tam / exhaustive,
+      matching.matching.num_verified_pairs);
+  if (tam > 0 && seconds > 0) {
+    const double per_pair = seconds / tam;
+    const double exhaustive_seconds = per_pair * exhaustive;
+    std::printf(
+        "  matching time     %.1f s (%.2f s per pair, measured); "
+        "exhaustive at that rate: ~%.0f s\n",
+        seconds,
+        per_pair,
+        exhaustive_seconds);
+    std::printf(
+        "  time saved        ~%.0f s (pair selection itself took "
+        "%.1f s)\n",
+        exhaustive_seconds - seconds - matching.pairing_seconds,
+        matching.pairing_seconds);
+  }
+  std::printf(
+      "  registered        %zu of %zu images (largest model)\n", registered, n);
+  std::printf("  report            %s\n", report_path.c_str());
+}
+
+}  // namespace
 
 int RunGcnReconstructor(int argc, char** argv) {
   std::string image_path;
@@ -92,32 +203,33 @@ int RunGcnReconstructor(int argc, char** argv) {
   const IncrementalMappingSummary mapping = RunIncrementalMapping(
       colmap, database_path, sparse_path, mapping_options);
 
+  const double choosing_seconds = matching.pairing_seconds;
+  const double matching_seconds =
+      std::max(0.0, matching.matching.matching_seconds);
+  WriteJsonFile(JoinPaths(workspace_path, kRunSummaryFile),
+                RunSummary(argc,
+                           argv,
+                           colmap,
+                           matching_options,
+                           database_path,
+                           {{"feature extraction", extraction.seconds},
+                            {"pair selection", choosing_seconds},
+                            {"matching and verification", matching_seconds},
+                            {"mapping", mapping.seconds}},
+                           matching));
+  HtmlReportOptions report_options;
+  report_options.workspace_path = workspace_path;
+  report_options.min_num_inliers = matching_options.matching.min_num_inliers;
+  const std::string report_path = WriteHtmlReport(report_options);
+
   PrintGcnMatchingReport(matching);
   std::printf("\nextraction %.1f s, matching %.1f s, mapping %.1f s\n",
               extraction.seconds,
               matching.matching.matching_seconds,
               mapping.seconds);
-  std::printf("%-28s %10s %8s %12s %10s %10s\n",
-              "model",
-              "registered",
-              "points",
-              "observations",
-              "track_len",
-              "reproj_px");
-  for (const std::string& model_path : mapping.model_paths) {
-    Reconstruction reconstruction;
-    reconstruction.Read(model_path);
-    const ReconstructionStatistics stats =
-        ComputeReconstructionStatistics(reconstruction);
-    std::printf("%-28s %5zu/%-4zu %8zu %12zu %10.2f %10.3f\n",
-                model_path.c_str(),
-                stats.num_registered_images,
-                matching.num_images,
-                stats.num_points3D,
-                stats.num_observations,
-                stats.mean_track_length,
-                stats.mean_reprojection_error);
-  }
+  const size_t registered =
+      PrintModels(mapping.model_paths, matching.num_images);
+  PrintSummary(matching, registered, report_path);
   if (mapping.model_paths.empty()) {
     std::printf("(the mapper produced no model)\n");
     return 1;

@@ -5,6 +5,7 @@
 
 #include "math/sgemm.h"
 #include "util/error.h"
+#include "util/logging.h"
 #include "util/threading.h"
 
 namespace colmap_gcn {
@@ -237,6 +238,7 @@ std::vector<std::vector<float>> ScoreAllQueries(
   std::vector<GcnWorkspace> workspaces(threads);
   std::vector<QuerySubgraph> subgraphs(threads);
   std::vector<std::vector<float>> scores(n);
+  ProgressLogger progress(n, "QES + GCN scoring", "queries");
   ParallelFor(0, n, threads, [&](int q, int t) {
     if (!builders[t]) {
       builders[t] =
@@ -247,6 +249,7 @@ std::vector<std::vector<float>> ScoreAllQueries(
     scorer.ScoreSubgraph(subgraphs[t], &workspaces[t], &logits);
     for (float& z : logits) z = Sigmoid(z);
     scores[q] = std::move(logits);
+    progress.Increment();
   });
   return scores;
 }

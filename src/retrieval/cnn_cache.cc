@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -64,21 +65,6 @@ void WriteCnnCache(const std::string& cache_path,
                     "CNN embedding cache");
 }
 
-void LogCnnProgress(const size_t done,
-                    const size_t num_images,
-                    const size_t num_cached,
-                    const double seconds) {
-  char line[160];
-  std::snprintf(line,
-                sizeof(line),
-                "CNN embedding: %zu/%zu images (%zu cached), %.1f s",
-                done,
-                num_images,
-                num_cached,
-                seconds);
-  LOG(INFO) << line;
-}
-
 }  // namespace
 
 FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
@@ -110,7 +96,10 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
   const int num_threads = EffectiveNumThreads(options.num_threads);
   const Timer timer;
   double last_write = 0;
-  size_t next_progress = options.progress_every;
+  std::optional<ProgressLogger> progress;
+  if (options.progress_every > 0) {
+    progress.emplace(images.size(), "CNN embedding", "images");
+  }
   // Chunks: files are read and hashed in parallel, misses embedded, and
   // every ~30 s the cache is rewritten so an interrupted run resumes.
   const size_t chunk_size =
@@ -166,12 +155,7 @@ FloatMatrix ComputeDatabaseCnnDescriptors(const Database& database,
         }
         local_stats.num_computed += misses.size();
       }
-      if (options.progress_every > 0 &&
-          (end >= next_progress || end == images.size())) {
-        while (next_progress <= end) next_progress += options.progress_every;
-        LogCnnProgress(
-            end, images.size(), local_stats.num_cached, timer.ElapsedSeconds());
-      }
+      if (progress) progress->Update(end);
       if (!cache_path.empty() && local_stats.num_computed > 0 &&
           end < images.size() && timer.ElapsedSeconds() - last_write > 30) {
         write_cache(end);

@@ -62,7 +62,7 @@ struct CnnEmbeddingOptions {
   // uses all cores.
   int num_threads = -1;
 
-  // A progress line on stderr every this many images; 0 is silent.
+  // > 0: progress on stderr (util/logging.h ProgressLogger); 0 is silent.
   int progress_every = 50;
 
   // Throws OptionError naming the first invalid field.

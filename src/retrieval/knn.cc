@@ -8,6 +8,7 @@
 #include "math/dense_product.h"
 #include "retrieval/knn_graph_init.h"
 #include "util/error.h"
+#include "util/logging.h"
 #include "util/option_check.h"
 #include "util/threading.h"
 
@@ -145,6 +146,7 @@ KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
   std::vector<std::vector<float>> thresholds(products.size());
   const float* data = embeddings.data();
 
+  ProgressLogger progress(tasks.size(), "kNN", "blocks");
   ParallelFor(0,
               static_cast<int>(tasks.size()),
               num_threads,
@@ -204,6 +206,7 @@ KnnGraph ComputeExactKnn(const EmbeddingMatrix& embeddings,
                     }
                   }
                 }
+                progress.Increment();
               });
 
   std::vector<Neighbor> sorted(k);

@@ -486,6 +486,8 @@ GcnModel GcnTrainer::Train(
     LOG(INFO) << "epoch 0 (distance prior) | val " << initial.Format();
   }
   double lr = o.learning_rate;
+  // Every epoch has its own line; this adds the rate and ETA at each 10 %.
+  ProgressLogger progress(o.num_epochs, "GCN training", "epochs", 1e9);
   for (int epoch = 0; epoch < o.num_epochs; ++epoch) {
     Timer timer;
     lr = DecayedLearningRate(o, epoch, lr);
@@ -501,6 +503,7 @@ GcnModel GcnTrainer::Train(
     stats.seconds = timer.ElapsedSeconds();
     history_.push_back(stats);
     LogEpoch(stats, o.num_epochs, with_validation);
+    progress.Increment();
     if (improved) {
       best_ap = with_validation ? stats.validation.MeanAveragePrecision() : -1;
       best_model = model;

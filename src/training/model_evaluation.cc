@@ -459,7 +459,8 @@ void WriteGcnSensitivity(const std::vector<GcnSensitivityPoint>& points,
                   title + ": " + parameter,
                   parameter,
                   x,
-                  {precision, recall, f});
+                  {precision, recall, f},
+                  "precision / recall / F-measure");
   }
 }
 

@@ -8,6 +8,7 @@
 #include "test_utils.h"
 #include "util/error.h"
 #include "util/file.h"
+#include "util/logging.h"
 
 namespace colmap_gcn {
 namespace {
@@ -75,6 +76,69 @@ TEST(ColmapRunner, FailureReportedBehindExitZeroIsAnError) {
   fake.FailRuns();
   ExpectErrorContaining([&] { fake.Runner().Run("mapper", {}); },
                         "colmap mapper failed (exit 1): ");
+}
+
+TEST(ParseColmapProgress, ReadsTheCountsOfColmapsProgressLines) {
+  ColmapProgress progress;
+  ASSERT_TRUE(ParseColmapProgress("Processed file [17/24]", &progress));
+  EXPECT_EQ(progress.label, "extracting features");
+  EXPECT_EQ(progress.unit, "images");
+  EXPECT_EQ(progress.done, 17u);
+  EXPECT_EQ(progress.total, 24u);
+  // Exhaustive matching numbers the blocks of an n x m grid.
+  ASSERT_TRUE(ParseColmapProgress("Matching block [2/3, 1/3]", &progress));
+  EXPECT_EQ(progress.label, "matching");
+  EXPECT_EQ(progress.unit, "blocks");
+  EXPECT_EQ(progress.done, 4u);
+  EXPECT_EQ(progress.total, 9u);
+  ASSERT_TRUE(ParseColmapProgress("Matching image [4/24]", &progress));
+  EXPECT_EQ(progress.unit, "images");
+  // The mapper counts the registered images, of an unknown total.
+  ASSERT_TRUE(ParseColmapProgress("Registering image #12 (5)", &progress));
+  EXPECT_EQ(progress.label, "registering");
+  EXPECT_EQ(progress.done, 5u);
+  EXPECT_EQ(progress.total, 0u);
+  EXPECT_FALSE(ParseColmapProgress("  Features:        10", &progress));
+  // matches_importer's one block per run, printed at its end.
+  EXPECT_FALSE(ParseColmapProgress("Matching block [1/1] in 8.5s", &progress));
+  EXPECT_FALSE(ParseColmapProgress("Elapsed time: 0.1 [minutes]", &progress));
+}
+
+// Captures what the library logs.
+class CapturingSink : public LogSink {
+ public:
+  void Send(LogLevel, const std::string& message) override {
+    messages.push_back(message);
+  }
+  std::vector<std::string> messages;
+};
+
+TEST(ColmapRunner, SummarisesColmapsProgressUnlessVerbose) {
+  TemporaryDirectory dir;
+  const test::FakeColmap fake(dir.Path());
+  // A command the fake does nothing for, printing feature_extractor's lines.
+  fake.PrintOnEveryRun(
+      "Processed file [1/2]\n  Features: 10\nProcessed file [2/2]\n"
+      "  Features: 12\nElapsed time: 0.001 [minutes]\n");
+  ColmapRunnerOptions options;
+  options.colmap_exe = fake.Runner().Executable();
+  options.log_path = JoinPaths(dir.Path(), "colmap.log");
+  {
+    CapturingSink sink;
+    const ScopedLogSink scoped(&sink);
+    ColmapRunner(options).Run("model_analyzer", {});
+    // COLMAP's lines go only to the log file; a step this quick is not
+    // even summarised (ProgressLogger::kQuietSeconds).
+    EXPECT_TRUE(sink.messages.empty()) << sink.messages[0];
+  }
+  EXPECT_NE(ReadTextFile(options.log_path).find("Features: 12"),
+            std::string::npos);
+  options.verbose = true;
+  CapturingSink sink;
+  const ScopedLogSink scoped(&sink);
+  ColmapRunner(options).Run("model_analyzer", {});
+  EXPECT_EQ(sink.messages.size(), 5u);
+  EXPECT_EQ(sink.messages[1], "[colmap model_analyzer]   Features: 10");
 }
 
 TEST(FindColmapExecutable, HonoursHintAndRejectsMissing) {

@@ -139,6 +139,8 @@ TEST_F(DefaultModelEndToEnd, GcnMatcherWithTheShippedModel) {
   ASSERT_TRUE(ExistsFile(pairs_path)) << output;
   EXPECT_NE(output.find("pairs written to " + pairs_path), std::string::npos)
       << output;
+  // The picture of the view graph beside the pairs file.
+  EXPECT_TRUE(ExistsFile(database_path + ".pairs_view_graph.png")) << output;
 
   const std::vector<DatabaseImage> images =
       Database(database_path).ReadAllImages();
@@ -162,11 +164,14 @@ TEST_F(DefaultModelEndToEnd, GcnMatcherWithTheShippedModel) {
   ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
                        " --GcnMatching.model_path " + ShippedModelPath() +
                        " --GcnMatching.pairs_path " + explicit_pairs_path +
+                       " --GcnMatching.write_figures 0"
                        " --SiftMatching.use_gpu 0",
                    &output),
             0)
       << output;
   EXPECT_EQ(ReadTextFile(explicit_pairs_path), ReadTextFile(pairs_path));
+  EXPECT_FALSE(
+      ExistsFile(JoinPaths(dir_->Path(), "explicit_pairs_view_graph.png")));
 
   // Every image registered in one model: the run is repeatable, so anything
   // less means the pairs lost a view.
@@ -214,6 +219,13 @@ TEST_F(DefaultModelEndToEnd, GcnReconstructorFromImages) {
                         std::to_string(kNumImages)),
             std::string::npos)
       << output;
+  // The HTML report, named in the summary, with nothing left unregistered.
+  const std::string report_path = JoinPaths(workspace_path, "report.html");
+  EXPECT_NE(output.find("report            " + report_path), std::string::npos)
+      << output;
+  EXPECT_NE(ReadTextFile(report_path).find("Images not registered (0)"),
+            std::string::npos);
+  EXPECT_TRUE(ExistsFile(JoinPaths(workspace_path, "run.json")));
 }
 
 }  // namespace
