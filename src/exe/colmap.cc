@@ -15,6 +15,7 @@
 #include "exe/gcn_embedding_trainer.h"
 #include "exe/gcn_matcher.h"
 #include "exe/gcn_model_evaluator.h"
+#include "exe/gcn_pair_filter.h"
 #include "exe/gcn_reconstructor.h"
 #include "exe/gcn_synth.h"
 #include "exe/gcn_train.h"
@@ -38,6 +39,7 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
   commands.emplace_back("gcn_vocab_tree_builder", &RunGcnVocabTreeBuilder);
   commands.emplace_back("gcn_benchmark", &RunGcnBenchmark);
   commands.emplace_back("gcn_adaptive_simulator", &RunGcnAdaptiveSimulator);
+  commands.emplace_back("gcn_pair_filter", &RunGcnPairFilter);
   return commands;
 }
 

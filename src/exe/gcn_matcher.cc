@@ -26,6 +26,10 @@ void AddGcnMatchingOptions(OptionManager* manager,
                             "log of COLMAP's full output");
   manager->AddDefaultOption(
       "GcnMatching.verbose", &matching.verbose, "show all of COLMAP's output");
+  manager->AddDefaultOption("GcnMatching.filter_lookalikes",
+                            &options->filter_lookalikes,
+                            "hide look-alike (duplicate structure) pairs from "
+                            "the mapper after matching (docs/lookalike.md)");
   manager->AddDefaultOption("SiftMatching.min_num_inliers",
                             &matching.min_num_inliers,
                             "COLMAP's verification threshold; also what a "
