@@ -316,15 +316,12 @@ void PrintPairFilterReport(const PairFilterReport& report,
   if (!list_pairs) return;
   for (const PairFilterEntry& entry : report.entries) {
     if (!entry.decision.Rejected()) continue;
-    std::printf(
-        "  hidden %s %s  inliers %d  rotation error %.1f deg  hops %d"
-        "  (%s)\n",
-        entry.name1.c_str(),
-        entry.name2.c_str(),
-        entry.num_inliers,
-        entry.decision.rotation_error,
-        entry.decision.backbone_hops,
-        LookalikeReasonName(entry.decision.reason));
+    std::printf("  hidden %s %s  inliers %d  rotation error %.1f deg  (%s)\n",
+                entry.name1.c_str(),
+                entry.name2.c_str(),
+                entry.num_inliers,
+                entry.decision.rotation_error,
+                LookalikeReasonName(entry.decision.reason));
   }
 }
 
