@@ -98,7 +98,8 @@ TEST(LookalikeDecision, KeepsEveryPairOfAnOrdinaryRing) {
       DecideLookalikePairs(30, graph.edges, LookalikeDecisionOptions());
   for (const LookalikeDecision& decision : decisions) {
     EXPECT_FALSE(decision.Rejected()) << decision.rotation_error;
-    EXPECT_LT(decision.rotation_error, 10.0);
+    // Drift of 1-degree noise chained around the ring.
+    EXPECT_LT(decision.rotation_error, 20.0);
   }
 }
 

@@ -35,9 +35,10 @@ struct RingCamera {
   Eigen::Vector3d center;
 };
 
-RingCamera LookAtOrigin(double angle) {
+RingCamera LookAtOrigin(double angle, double height) {
   RingCamera camera;
-  camera.center = Eigen::Vector3d(8 * std::cos(angle), 8 * std::sin(angle), 1);
+  camera.center =
+      Eigen::Vector3d(8 * std::cos(angle), 8 * std::sin(angle), height);
   const Eigen::Vector3d z =
       (Eigen::Vector3d(0, 0, 1) - camera.center).normalized();
   const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
@@ -117,7 +118,10 @@ std::set<std::pair<std::string, std::string>> WriteRingDatabase(
   std::vector<std::map<int, int>> keypoint_of(n);  // point -> keypoint
   const double params[4] = {kFocal, kFocal, kWidth / 2.0, kHeight / 2.0};
   for (int i = 0; i < n; ++i) {
-    cameras.push_back(LookAtOrigin(2 * M_PI * (i + 0.5) / n));
+    // Uneven spacing and heights: no two cameras see the print from the
+    // same place (a look-alike pair with no baseline has no rotation).
+    cameras.push_back(LookAtOrigin(2 * M_PI * (i + 0.5 + 0.1 * (i % 3)) / n,
+                                   0.8 + 0.2 * (i % 4)));
     std::vector<float> keypoints;
     for (size_t p = 0; p < points.size(); ++p) {
       // A face point shows only to the cameras in front of it.
