@@ -116,6 +116,7 @@ void GcnMatchingOptions::Check() const {
                "be one of " + StringJoin(names, "|"));
   PairGenerators().Check(pairing, generators);
   matching.Check();
+  lookalike_filter.Check();
 }
 
 void CheckOutputFolder(const std::string& path) {
@@ -192,6 +193,8 @@ GcnMatchingReport ChooseAndMatchPairs(const std::string& database_path,
   matching_options.colmap_args = options.colmap_args;
   matching_options.block_size = options.matching.block_size;
   matching_options.min_num_inliers = options.matching.min_num_inliers;
+  matching_options.lookalikes_unverified = options.filter_lookalikes;
+  matching_options.lookalike_filter = options.lookalike_filter;
   LOG(INFO) << options.pairing << " pairing of " << report.num_images
             << " images"
             << (generator->UsesVerification()
@@ -236,6 +239,15 @@ GcnMatchingReport RunGcnMatching(const std::string& database_path,
   try {
     GcnMatchingReport report =
         ChooseAndMatchPairs(database_path, log_path, options, &colmap);
+    if (options.filter_lookalikes) {
+      PairFilterOptions filter_options = options.lookalike_filter;
+      filter_options.min_num_inliers = options.matching.min_num_inliers;
+      const PairFilterReport filter =
+          FilterLookalikePairs(database_path, filter_options);
+      report.filtered_lookalikes = true;
+      report.num_lookalike_pairs = filter.num_rejected;
+      report.filter_seconds = filter.seconds;
+    }
     run_files.RemoveSqliteSideFiles();
     return report;
   } catch (...) {
@@ -268,6 +280,13 @@ void PrintGcnMatchingReport(const GcnMatchingReport& report) {
   if (report.matching.num_already_matched > 0) {
     std::printf("(%zu of the pairs were already matched in the database)\n",
                 report.matching.num_already_matched);
+  }
+  if (report.filtered_lookalikes) {
+    std::printf(
+        "look-alike filter: %zu verified pairs hidden from the mapper "
+        "(%.2f s; colmap gcn_pair_filter --restore 1 puts them back)\n",
+        report.num_lookalike_pairs,
+        report.filter_seconds);
   }
   std::printf("pairs written to %s\n", report.matching.pairs_path.c_str());
 }

@@ -6,6 +6,7 @@
 
 #include "controllers/pair_generators.h"
 #include "controllers/pair_matching.h"
+#include "disambiguation/pair_filter.h"
 #include "pairing/pairing.h"
 #include "scene/database.h"
 
@@ -54,6 +55,11 @@ struct GcnMatchingOptions {
     void Check() const;
   } matching;
 
+  // After matching, hide verified pairs of duplicate structure from COLMAP's
+  // mapper (docs/lookalike.md); its min_num_inliers is matching's.
+  bool filter_lookalikes = true;
+  PairFilterOptions lookalike_filter;
+
   // Passed to COLMAP's matches_importer unchanged: the user's other
   // --SiftMatching.* arguments.
   std::vector<std::string> colmap_args;
@@ -77,6 +83,9 @@ struct GcnMatchingReport {
   size_t num_images = 0;
   double pairing_seconds = 0;  // choosing the pairs
   PairMatchingSummary matching;
+  bool filtered_lookalikes = false;
+  size_t num_lookalike_pairs = 0;  // hidden by the look-alike filter
+  double filter_seconds = 0;
 };
 
 // The whole `gcn_matcher` path: database -> pair generator -> pairs file ->

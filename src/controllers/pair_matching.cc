@@ -325,6 +325,27 @@ PairMatchingSummary MatchAllPairs(const ColmapRunner& colmap,
 
 // How a round's pairs verified, for Observe(); a pair COLMAP kept no row
 // for stays at PairVerification's defaults (unverified).
+// Reports the pairs the look-alike filter rejects, among all verified pairs
+// of the working copy so far, as unverified.
+void MarkLookalikesUnverified(const std::string& work_path,
+                              const PairMatchingOptions& options,
+                              std::vector<PairVerification>* verifications) {
+  PairFilterOptions filter_options = options.lookalike_filter;
+  filter_options.min_num_inliers = options.min_num_inliers;
+  const TwoViewGeometryStore copy(work_path);
+  const std::vector<image_pair_t> rejected =
+      RejectedPairIds(FindLookalikePairs(copy, filter_options));
+  for (PairVerification& verification : *verifications) {
+    if (std::binary_search(
+            rejected.begin(),
+            rejected.end(),
+            ImagePairToPairId(verification.image_id1,
+                              verification.image_id2))) {
+      verification.config = 0;
+    }
+  }
+}
+
 std::vector<PairVerification> Verifications(const std::vector<ImagePair>& pairs,
                                             const GeometryMap& geometries) {
   std::vector<PairVerification> verifications;
@@ -434,8 +455,11 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
                                       /*stop_between_blocks=*/false);
       summary.matching_seconds += timer.ElapsedSeconds();
     }
-    const std::vector<PairVerification> verifications =
+    std::vector<PairVerification> verifications =
         Verifications(round_pairs, geometries);
+    if (options.lookalikes_unverified) {
+      MarkLookalikesUnverified(work_path, options, &verifications);
+    }
     generator_timer.Restart();
     generator->Observe(verifications);
     generator_seconds += generator_timer.ElapsedSeconds();

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "controllers/colmap_runner.h"
+#include "disambiguation/pair_filter.h"
 #include "pairing/pairing.h"
 #include "scene/database.h"
 #include "util/types.h"
@@ -31,6 +32,12 @@ struct PairMatchingOptions {
   // Forwarded verbatim to `colmap matches_importer` (the user's other
   // --SiftMatching.* options; never --SiftMatching.min_num_inliers).
   std::vector<std::string> colmap_args;
+
+  // Generators that use verification (adaptive, graphmatch): each round,
+  // the pairs the look-alike filter rejects (docs/lookalike.md) reach the
+  // generator as unverified, so propagation never crosses them.
+  bool lookalikes_unverified = false;
+  PairFilterOptions lookalike_filter;
 
   void Check() const;
 };

@@ -18,6 +18,8 @@ PairMatchingOptions BenchmarkOptions::MatchingOptions() const {
   PairMatchingOptions matching;
   matching.colmap_args = matching_args;
   matching.min_num_inliers = gcn_matching.matching.min_num_inliers;
+  matching.lookalikes_unverified = gcn_matching.filter_lookalikes;
+  matching.lookalike_filter = gcn_matching.lookalike_filter;
   return matching;
 }
 

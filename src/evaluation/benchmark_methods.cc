@@ -15,6 +15,7 @@
 #include "controllers/incremental_mapping.h"
 #include "controllers/pair_generators.h"
 #include "controllers/pair_matching.h"
+#include "disambiguation/pair_filter.h"
 #include "evaluation/collection.h"
 #include "evaluation/common_tracks.h"
 #include "evaluation/dataset.h"
@@ -61,6 +62,37 @@ std::unique_ptr<PairGenerator> BenchmarkRunner::CreateGenerator(
   return registry.Create(method.pairing, options, context);
 }
 
+namespace {
+
+// The look-alike filter's state as --GcnMatching.filter_lookalikes asks:
+// applied to a freshly matched database, or applied / undone on a cached one
+// (which then maps again). Records it in `run`.
+void ApplyLookalikeFilter(const std::string& db,
+                          const GcnMatchingOptions& gcn_matching,
+                          Json* run) {
+  const bool wanted = gcn_matching.filter_lookalikes;
+  if (run->value("status", std::string()) != "ok" || run->contains("same_as") ||
+      (run->contains("lookalike_filter") &&
+       run->at("lookalike_filter").get<bool>() == wanted)) {
+    return;
+  }
+  if (wanted) {
+    PairFilterOptions options = gcn_matching.lookalike_filter;
+    options.min_num_inliers = gcn_matching.matching.min_num_inliers;
+    const PairFilterReport report = FilterLookalikePairs(db, options);
+    (*run)["lookalike_removed"] = report.num_rejected;
+    (*run)["filter_seconds"] = report.seconds;
+  } else {
+    RestoreLookalikePairs(db);
+    run->erase("lookalike_removed");
+    run->erase("filter_seconds");
+  }
+  (*run)["lookalike_filter"] = wanted;
+  run->erase("mapping_seconds");  // maps again
+}
+
+}  // namespace
+
 Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
                                   const BenchmarkMethod& method) {
   const std::string dir = MethodDir(scene, method);
@@ -83,6 +115,10 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
          owner->second == method.spec);
     if (!thresholds_changed && !stale_duplicate) {
       Progress(name, method.spec + ": matching cached");
+      const Json before = run;
+      ApplyLookalikeFilter(
+          JoinPaths(dir, "database.db"), options_.gcn_matching, &run);
+      if (run != before) WriteJsonFile(run_path, run);
       return run;
     }
     Progress(name,
@@ -161,6 +197,7 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
                  std::to_string(summary.num_attempted_pairs) + ", UM " +
                  std::to_string(summary.num_verified_pairs) + " in " +
                  FormatSeconds(summary.matching_seconds));
+    ApplyLookalikeFilter(db, options_.gcn_matching, &run);
   } catch (const Error& error) {
     // An interruption is no result of the method: nothing is cached, the
     // run stops, and the next one matches this method again.
@@ -171,6 +208,34 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
   }
   WriteJsonFile(run_path, run);
   return run;
+}
+
+void BenchmarkRunner::CountLookalikeRemovals(const std::string& db,
+                                             const SceneContext& scene,
+                                             MethodResult* result) const {
+  const TwoViewGeometryStore database(db);
+  for (const HiddenTwoViewGeometry& hidden : database.ReadHiddenPairs()) {
+    if (!IsVerifiedTwoViewGeometry(
+            2,
+            hidden.num_inliers,
+            options_.gcn_matching.matching.min_num_inliers)) {
+      continue;
+    }
+    ++result->num_lookalike_removed;
+    const ImagePair pair = PairIdToImagePair(hidden.pair_id);
+    const auto a = scene.names_by_id.find(pair.first);
+    const auto b = scene.names_by_id.find(pair.second);
+    if (a == scene.names_by_id.end() || b == scene.names_by_id.end() ||
+        !scene.labels.IsLabelled(a->second, b->second)) {
+      continue;
+    }
+    if (scene.labels.SharesNothing(a->second, b->second)) {
+      ++result->num_lookalike_removed_wrong;
+    }
+    if (scene.labels.IsMatchable(a->second, b->second, options_.labels)) {
+      ++result->num_lookalike_removed_matchable;
+    }
+  }
 }
 
 Json BenchmarkRunner::MapMethod(const SceneContext& scene,
@@ -228,6 +293,8 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
   result.mapping_seconds = run.value("mapping_seconds", 0.0);
   result.num_attempted = run.value("tam", size_t{0});
   result.num_verified = run.value("um", size_t{0});
+  result.lookalike_filter = run.value("lookalike_filter", false);
+  result.filter_seconds = run.value("filter_seconds", 0.0);
   const std::string dir = MethodDir(scene, method);
   const std::string pairs_path = JoinPaths(dir, "pairs.txt");
   if (!ExistsFile(pairs_path)) return result;
@@ -257,6 +324,7 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
       }
     }
   }
+  CountLookalikeRemovals(JoinPaths(dir, "database.db"), scene, &result);
   result.sfm = EvaluateSparseModels(JoinPaths(dir, "sparse"),
                                     scene.images.size(),
                                     scene.has_gt ? &scene.gt : nullptr,

@@ -14,6 +14,7 @@
 #include "controllers/gcn_matching.h"
 #include "controllers/incremental_mapping.h"
 #include "controllers/pair_matching.h"
+#include "disambiguation/pair_filter.h"
 #include "evaluation/collection.h"
 #include "evaluation/common_tracks.h"
 #include "evaluation/dataset.h"
@@ -145,6 +146,13 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
           const BenchmarkMethod exhaustive = ParseBenchmarkMethod("exhaustive");
           MatchMethod(*scene, exhaustive);
           matched_db = JoinPaths(MethodDir(*scene, exhaustive), "database.db");
+          // Labels see every verified pair, the look-alike filter's too.
+          if (!TwoViewGeometryStore(matched_db).ReadHiddenPairs().empty()) {
+            const std::string copy = JoinPaths(labels_dir, "unfiltered.db");
+            CopyDatabase(matched_db, copy);
+            RestoreLookalikePairs(copy);
+            matched_db = copy;
+          }
         }
         Progress(name,
                  "triangulating the matches on the GT cameras "

@@ -61,6 +61,11 @@ Json MethodResultToJson(const MethodResult& result) {
   json["um"] = result.num_verified;
   json["um_over_tam"] = result.UsefulRatio();
   json["num_verified_wrong"] = result.num_verified_wrong;
+  json["lookalike_filter"] = result.lookalike_filter;
+  json["lookalike_removed"] = result.num_lookalike_removed;
+  json["lookalike_removed_wrong"] = result.num_lookalike_removed_wrong;
+  json["lookalike_removed_matchable"] = result.num_lookalike_removed_matchable;
+  json["filter_seconds"] = result.filter_seconds;
   json["pairing_seconds"] = result.pairing_seconds;
   json["matching_seconds"] = result.matching_seconds;
   json["mapping_seconds"] = result.mapping_seconds;

@@ -21,6 +21,14 @@ struct MethodResult {
   size_t num_attempted = 0;       // TAM
   size_t num_verified = 0;        // UM
   size_t num_verified_wrong = 0;  // verified pairs that share nothing
+  // The look-alike filter (docs/lookalike.md): whether it ran, the verified
+  // pairs it hid from the mapper, of those the labels' wrong (sharing
+  // nothing) and matchable ones, and its time.
+  bool lookalike_filter = false;
+  size_t num_lookalike_removed = 0;
+  size_t num_lookalike_removed_wrong = 0;
+  size_t num_lookalike_removed_matchable = 0;
+  double filter_seconds = 0;
   double pairing_seconds = 0;     // choosing the pairs
   double matching_seconds = 0;    // COLMAP matching + verification
   double mapping_seconds = 0;

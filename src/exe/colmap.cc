@@ -17,6 +17,7 @@
 #include "exe/gcn_merge_databases.h"
 #include "exe/gcn_model_evaluator.h"
 #include "exe/gcn_pair_exporter.h"
+#include "exe/gcn_pair_filter.h"
 #include "exe/gcn_reconstructor.h"
 #include "exe/gcn_report.h"
 #include "exe/gcn_synth.h"
@@ -44,6 +45,7 @@ std::vector<std::pair<std::string, Command>> OurCommands() {
   commands.emplace_back("gcn_benchmark", &RunGcnBenchmark);
   commands.emplace_back("gcn_adaptive_simulator", &RunGcnAdaptiveSimulator);
   commands.emplace_back("gcn_merge_databases", &RunGcnMergeDatabases);
+  commands.emplace_back("gcn_pair_filter", &RunGcnPairFilter);
   return commands;
 }
 

@@ -37,6 +37,10 @@ void AddGcnMatchingOptions(OptionManager* manager,
                             &matching.write_figures,
                             "write a PNG of the view graph next to the "
                             "pairs file");
+  manager->AddDefaultOption("GcnMatching.filter_lookalikes",
+                            &options->filter_lookalikes,
+                            "hide look-alike (duplicate structure) pairs from "
+                            "the mapper after matching (docs/lookalike.md)");
   manager->AddDefaultOption("SiftMatching.min_num_inliers",
                             &matching.min_num_inliers,
                             "COLMAP's verification threshold; also what a "

@@ -23,6 +23,10 @@ void SqliteStatement::BindInt64(const int index, const int64_t value) {
   Check(sqlite3_bind_int64(stmt_, index, value), "binding");
 }
 
+void SqliteStatement::BindDouble(const int index, const double value) {
+  Check(sqlite3_bind_double(stmt_, index, value), "binding");
+}
+
 void SqliteStatement::BindText(const int index, const std::string& value) {
   Check(sqlite3_bind_text(stmt_,
                           index,
@@ -52,8 +56,17 @@ void SqliteStatement::Execute() {
   }
 }
 
+void SqliteStatement::Reset() {
+  sqlite3_reset(stmt_);
+  sqlite3_clear_bindings(stmt_);
+}
+
 int64_t SqliteStatement::Int64(const int col) const {
   return sqlite3_column_int64(stmt_, col);
+}
+
+double SqliteStatement::Double(const int col) const {
+  return sqlite3_column_double(stmt_, col);
 }
 
 bool SqliteStatement::IsNull(const int col) const {

@@ -29,14 +29,18 @@ class SqliteStatement {
   SqliteStatement& operator=(const SqliteStatement&) = delete;
 
   void BindInt64(int index, int64_t value);
+  void BindDouble(int index, double value);
   void BindText(int index, const std::string& value);
   void BindBlob(int index, const void* data, size_t num_bytes);
 
   // Returns true when a row is available, false when the statement is done.
   bool Step();
   void Execute();
+  // Ready to bind and run again.
+  void Reset();
 
   int64_t Int64(int col) const;
+  double Double(int col) const;
   bool IsNull(int col) const;
   std::string Text(int col) const;
   // Blob pointer (may be null for NULL or empty blobs) and its size.

@@ -234,6 +234,38 @@ SyntheticWorld BuildRepetitiveWorld(const WorldParams& params) {
   return world;
 }
 
+SyntheticWorld BuildTwinPrintWorld(const WorldParams& params) {
+  SyntheticWorld world;
+  Scene& scene = world.scene;
+  TextureFactory textures(&scene, params, 1);
+  SyntheticRandom rng(SyntheticRandom::Mix(params.seed, 5));
+  const double orbit_radius = 8.0;
+  const double g = orbit_radius + 6.0;
+  AddGround(&scene, &textures, g);
+  // The room: every wall segment its own texture, the only thing that tells
+  // the front views from the back views.
+  AddBackgroundRing(&scene, &textures, g, 6.0, 3);
+  // The object: one print on the front and the back, one plain finish on
+  // both ends, on a plain plinth: a 180-degree turn maps it onto itself.
+  const int print = textures.Random(1024, 1024);
+  const int end = textures.Smooth(256);
+  const double width = rng.Uniform(3.5, 4.5);
+  const double depth = rng.Uniform(1.2, 1.8);
+  const double height = rng.Uniform(3.0, 4.0);
+  scene.AddBox(Eigen::Vector2d::Zero(),
+               Eigen::Vector2d(width, depth),
+               rng.Uniform(0.0, M_PI),
+               0.0,
+               height,
+               {print, end, print, end},
+               textures.Smooth(256),
+               0.0);
+  world.target = Eigen::Vector3d(0, 0, 0.5 * height);
+  world.cameras = OrbitCameras(
+      params, &rng, world.target, orbit_radius, orbit_radius, 1.5, 3.5, 0.3);
+  return world;
+}
+
 namespace {
 
 // The symmetric world's tiered tower, from height z up: n-sided walls,

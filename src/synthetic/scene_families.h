@@ -53,6 +53,12 @@ SyntheticWorld BuildRepetitiveWorld(const WorldParams& params);
 // cameras orbit it.
 SyntheticWorld BuildSymmetricWorld(const WorldParams& params);
 
+// An object with one print on its front and back and plain ends (a
+// 180-degree turn maps it onto itself, like a mug printed on both sides)
+// inside a room whose walls are all different; cameras orbit it, so front
+// and back views look alike except for the room behind the object.
+SyntheticWorld BuildTwinPrintWorld(const WorldParams& params);
+
 // An unrelated little scene (own ground and boxes, no background ring) seen
 // by params.num_images cameras; used for distractor images.
 SyntheticWorld BuildDistractorWorld(const WorldParams& params);

@@ -30,9 +30,10 @@ SyntheticWorld BuildWorld(const std::string& family,
   if (family == "ordinary") return BuildOrdinaryWorld(params);
   if (family == "repetitive") return BuildRepetitiveWorld(params);
   if (family == "symmetric") return BuildSymmetricWorld(params);
+  if (family == "twin_print") return BuildTwinPrintWorld(params);
   ThrowError("unknown synthetic scene family '",
              family,
-             "' (expected ordinary, repetitive or symmetric)");
+             "' (expected ordinary, repetitive, symmetric or twin_print)");
 }
 
 void WriteImage(const std::string& path,
@@ -77,7 +78,8 @@ std::string DistractorImageName(int index) {
 }
 
 void SyntheticSceneOptions::Check() const {
-  CHECK_OPTION_ONE_OF(family, "ordinary", "repetitive", "symmetric");
+  CHECK_OPTION_ONE_OF(
+      family, "ordinary", "repetitive", "symmetric", "twin_print");
   CHECK_OPTION_RANGE(num_images, 2, 100000);
   CHECK_OPTION_RANGE(num_distractors, 0, 100000);
   CHECK_OPTION_RANGE(width, 16, 16384);

@@ -6,7 +6,7 @@ namespace colmap_gcn {
 
 // Options of the synthetic scene generator (`colmap gcn_synth`).
 struct SyntheticSceneOptions {
-  // Scene family: "ordinary", "repetitive" or "symmetric".
+  // Scene family: "ordinary", "repetitive", "symmetric" or "twin_print".
   std::string family = "ordinary";
   // Images of the scene (named synth_0000.jpg, ...).
   int num_images = 40;

@@ -1,0 +1,215 @@
+#include "disambiguation/lookalike_decision.h"
+
+#include <algorithm>
+#include <numeric>
+#include <queue>
+
+#include "disambiguation/relative_pose.h"
+#include "util/option_check.h"
+
+namespace colmap_gcn {
+namespace {
+
+// Stronger first: more strength, more inliers, then the smaller pair id.
+bool Stronger(const ViewGraphEdge& a, const ViewGraphEdge& b) {
+  if (a.strength != b.strength) return a.strength > b.strength;
+  if (a.num_inliers != b.num_inliers) return a.num_inliers > b.num_inliers;
+  return a.pair_id < b.pair_id;
+}
+
+// Edge indices sorted strongest first.
+std::vector<int> ByStrength(const std::vector<ViewGraphEdge>& edges) {
+  std::vector<int> order(edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return Stronger(edges[a], edges[b]);
+  });
+  return order;
+}
+
+// Edges among the k strongest of both their images.
+std::vector<bool> MutualStrongestEdges(int num_images,
+                                       const std::vector<ViewGraphEdge>& edges,
+                                       const std::vector<int>& order,
+                                       int k) {
+  std::vector<int> taken(num_images, 0);
+  std::vector<int> votes(edges.size(), 0);
+  for (const int e : order) {
+    for (const int image : {edges[e].image1, edges[e].image2}) {
+      if (taken[image] < k) {
+        ++taken[image];
+        ++votes[e];
+      }
+    }
+  }
+  std::vector<bool> mutual(edges.size());
+  for (size_t e = 0; e < edges.size(); ++e) mutual[e] = votes[e] == 2;
+  return mutual;
+}
+
+int Find(std::vector<int>* parent, int x) {
+  while ((*parent)[x] != x) {
+    (*parent)[x] = (*parent)[(*parent)[x]];
+    x = (*parent)[x];
+  }
+  return x;
+}
+
+// Backbone hops from `source` to `target` without edge `skip`; -1 when
+// unreachable. adjacency holds (neighbour, edge) per image.
+int Hops(const std::vector<std::vector<std::pair<int, int>>>& adjacency,
+         int source,
+         int target,
+         int skip,
+         std::vector<int>* distance) {
+  std::fill(distance->begin(), distance->end(), -1);
+  std::queue<int> queue;
+  (*distance)[source] = 0;
+  queue.push(source);
+  while (!queue.empty()) {
+    const int image = queue.front();
+    queue.pop();
+    if (image == target) return (*distance)[image];
+    for (const auto& [next, edge] : adjacency[image]) {
+      if (edge == skip || (*distance)[next] >= 0) continue;
+      (*distance)[next] = (*distance)[image] + 1;
+      queue.push(next);
+    }
+  }
+  return -1;
+}
+
+// A spanning forest with the absolute rotations chained along it from each
+// tree's smallest image.
+struct RotationForest {
+  explicit RotationForest(int num_images)
+      : tree(num_images),
+        component(num_images, -1),
+        absolute(num_images, Eigen::Matrix3d::Identity()) {}
+
+  void AddEdge(const std::vector<ViewGraphEdge>& edges, int e) {
+    tree[edges[e].image1].emplace_back(edges[e].image2, e);
+    tree[edges[e].image2].emplace_back(edges[e].image1, e);
+  }
+
+  void Chain(const std::vector<ViewGraphEdge>& edges) {
+    const int num_images = static_cast<int>(tree.size());
+    std::fill(component.begin(), component.end(), -1);
+    for (int root = 0; root < num_images; ++root) {
+      if (component[root] >= 0) continue;
+      component[root] = root;
+      absolute[root] = Eigen::Matrix3d::Identity();
+      std::queue<int> queue;
+      queue.push(root);
+      while (!queue.empty()) {
+        const int image = queue.front();
+        queue.pop();
+        for (const auto& [next, e] : tree[image]) {
+          if (component[next] >= 0) continue;
+          component[next] = root;
+          const Eigen::Matrix3d& R = edges[e].rotation;
+          absolute[next] =
+              edges[e].image1 == image
+                  ? Eigen::Matrix3d(R * absolute[image])
+                  : Eigen::Matrix3d(R.transpose() * absolute[image]);
+          queue.push(next);
+        }
+      }
+    }
+  }
+
+  // Degrees between an edge's measured rotation and the chained one; -1
+  // without a rotation or across trees.
+  double Error(const ViewGraphEdge& edge) const {
+    if (!edge.has_rotation ||
+        component[edge.image1] != component[edge.image2]) {
+      return -1;
+    }
+    const Eigen::Matrix3d chained =
+        absolute[edge.image2] * absolute[edge.image1].transpose();
+    return RotationAngleDegrees(edge.rotation.transpose() * chained);
+  }
+
+  std::vector<std::vector<std::pair<int, int>>> tree;
+  std::vector<int> component;
+  std::vector<Eigen::Matrix3d> absolute;
+};
+
+}  // namespace
+
+void LookalikeDecisionOptions::Check() const {
+  CHECK_OPTION_GE(backbone_neighbors, 1);
+  CHECK_OPTION_INTERVAL(max_rotation_error, 0.0, false, 180.0, true);
+  CHECK_OPTION_GE(max_backbone_hops, 0);
+}
+
+const char* LookalikeReasonName(const LookalikeReason reason) {
+  switch (reason) {
+    case LookalikeReason::kKept:
+      return "kept";
+    case LookalikeReason::kRotationLoop:
+      return "rotation_loop";
+    case LookalikeReason::kContext:
+      return "context";
+  }
+  return "unknown";
+}
+
+std::vector<LookalikeDecision> DecideLookalikePairs(
+    const int num_images,
+    const std::vector<ViewGraphEdge>& edges,
+    const LookalikeDecisionOptions& options) {
+  options.Check();
+  std::vector<LookalikeDecision> decisions(edges.size());
+  const std::vector<int> order = ByStrength(edges);
+  const std::vector<bool> backbone = MutualStrongestEdges(
+      num_images, edges, order, options.backbone_neighbors);
+
+  std::vector<std::vector<std::pair<int, int>>> adjacency(num_images);
+  for (const int e : order) {
+    if (!backbone[e]) continue;
+    decisions[e].in_backbone = true;
+    adjacency[edges[e].image1].emplace_back(edges[e].image2, e);
+    adjacency[edges[e].image2].emplace_back(edges[e].image1, e);
+  }
+  // Maximum spanning forest of the edges that carry a rotation: the
+  // backbone's first, then the pieces it leaves are joined by their
+  // strongest pairs.
+  std::vector<int> parent(num_images);
+  std::iota(parent.begin(), parent.end(), 0);
+  RotationForest forest(num_images);
+  for (const bool from_backbone : {true, false}) {
+    for (const int e : order) {
+      if (backbone[e] != from_backbone || !edges[e].has_rotation) continue;
+      const int a = Find(&parent, edges[e].image1);
+      const int b = Find(&parent, edges[e].image2);
+      if (a == b) continue;
+      parent[a] = b;
+      forest.AddEdge(edges, e);
+      decisions[e].in_tree = true;
+    }
+  }
+  forest.Chain(edges);
+
+  std::vector<int> distance(num_images);
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const ViewGraphEdge& edge = edges[e];
+    LookalikeDecision& decision = decisions[e];
+    decision.rotation_error = forest.Error(edge);
+    if (options.max_backbone_hops > 0) {
+      decision.backbone_hops = Hops(
+          adjacency, edge.image1, edge.image2, static_cast<int>(e), &distance);
+    }
+    if (decision.in_tree) continue;
+    if (decision.rotation_error > options.max_rotation_error) {
+      decision.reason = LookalikeReason::kRotationLoop;
+    } else if (options.max_backbone_hops > 0 &&
+               (decision.backbone_hops < 0 ||
+                decision.backbone_hops > options.max_backbone_hops)) {
+      decision.reason = LookalikeReason::kContext;
+    }
+  }
+  return decisions;
+}
+
+}  // namespace colmap_gcn

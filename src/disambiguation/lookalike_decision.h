@@ -1,0 +1,76 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "util/types.h"
+
+namespace colmap_gcn {
+
+// A verified pair as the decision sees it: the images as indices 0..n-1, its
+// inlier count and, where one could be recovered, the measured relative
+// rotation R = R2 * R1^T (camera 2's orientation relative to camera 1's).
+struct ViewGraphEdge {
+  image_pair_t pair_id = kInvalidImagePairId;  // orders ties
+  int image1 = -1;
+  int image2 = -1;
+  int num_inliers = 0;
+  // How strongly the pair overlaps: orders the edges (more first; ties by
+  // num_inliers, then pair_id). The filter uses the grid cells its inliers
+  // cover (the fewer of the two images), so that many matches on one small
+  // repeated object weigh less than matches spread over the whole view.
+  int strength = 0;
+  bool has_rotation = false;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+};
+
+// How the look-alike filter decides (docs/lookalike.md). One parameter set
+// for every scene.
+struct LookalikeDecisionOptions {
+  // An edge belongs to the backbone when it is among the
+  // backbone_neighbors strongest of both its images.
+  int backbone_neighbors = 4;
+
+  // A pair whose measured rotation disagrees by more than this with the
+  // rotation chained along the backbone's maximum spanning tree is a
+  // look-alike (degrees).
+  double max_rotation_error = 30.0;
+
+  // A pair whose images are more than this many backbone hops apart
+  // (without the pair itself) is a look-alike; 0 turns this test off.
+  int max_backbone_hops = 0;
+
+  void Check() const;
+};
+
+enum class LookalikeReason {
+  kKept = 0,
+  kRotationLoop = 1,  // its rotation contradicts the chained rotations
+  kContext = 2,       // its images are far apart in the backbone
+};
+
+const char* LookalikeReasonName(LookalikeReason reason);
+
+struct LookalikeDecision {
+  LookalikeReason reason = LookalikeReason::kKept;
+  bool in_backbone = false;
+  bool in_tree = false;
+  // Degrees between the measured and the chained rotation; -1 when either is
+  // missing (no rotation, or the images in different backbone components).
+  double rotation_error = -1;
+  // Backbone hops between the images without this edge; -1 if unconnected.
+  int backbone_hops = -1;
+
+  bool Rejected() const { return reason != LookalikeReason::kKept; }
+};
+
+// One decision per edge, in the order given. Deterministic: depends only on
+// the edges (ties broken by pair_id), never on their order or on threads.
+std::vector<LookalikeDecision> DecideLookalikePairs(
+    int num_images,
+    const std::vector<ViewGraphEdge>& edges,
+    const LookalikeDecisionOptions& options);
+
+}  // namespace colmap_gcn

@@ -1,0 +1,328 @@
+#include "disambiguation/pair_filter.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "disambiguation/relative_pose.h"
+#include "scene/database_working_copy.h"
+#include "util/error.h"
+#include "util/file.h"
+#include "util/interrupt.h"
+#include "util/logging.h"
+#include "util/option_check.h"
+#include "util/threading.h"
+#include "util/timer.h"
+
+namespace colmap_gcn {
+namespace {
+
+typedef Eigen::Matrix<float, Eigen::Dynamic, 2> KeypointPositions;
+
+// Rays (normalised coordinates) of at most max_rays of a pair's inliers,
+// evenly spaced over them.
+void InlierRays(const VerifiedTwoViewGeometry& pair,
+                const KeypointPositions& keypoints1,
+                const KeypointPositions& keypoints2,
+                const PinholeIntrinsics& camera1,
+                const PinholeIntrinsics& camera2,
+                const int max_rays,
+                Eigen::Matrix2Xd* rays1,
+                Eigen::Matrix2Xd* rays2) {
+  const Eigen::Index num_inliers = pair.inliers.rows();
+  const Eigen::Index n = std::min<Eigen::Index>(num_inliers, max_rays);
+  rays1->resize(2, n);
+  rays2->resize(2, n);
+  Eigen::Index used = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Index row = i * num_inliers / n;
+    const uint32_t k1 = pair.inliers(row, 0);
+    const uint32_t k2 = pair.inliers(row, 1);
+    if (k1 >= keypoints1.rows() || k2 >= keypoints2.rows()) continue;
+    rays1->col(used) << (keypoints1(k1, 0) - camera1.cx) / camera1.fx,
+        (keypoints1(k1, 1) - camera1.cy) / camera1.fy;
+    rays2->col(used) << (keypoints2(k2, 0) - camera2.cx) / camera2.fx,
+        (keypoints2(k2, 1) - camera2.cy) / camera2.fy;
+    ++used;
+  }
+  rays1->conservativeResize(2, used);
+  rays2->conservativeResize(2, used);
+}
+
+// The measured relative rotation of a pair: from E when COLMAP verified it
+// calibrated, otherwise from F and the cameras' intrinsics.
+bool MeasureRotation(const VerifiedTwoViewGeometry& pair,
+                     const KeypointPositions& keypoints1,
+                     const KeypointPositions& keypoints2,
+                     const PinholeIntrinsics& camera1,
+                     const PinholeIntrinsics& camera2,
+                     const int max_rays,
+                     Eigen::Matrix3d* rotation) {
+  Eigen::Matrix3d E = pair.E;
+  if (pair.config != 2 || E.norm() < 1e-12) {
+    if (pair.F.norm() < 1e-12) return false;
+    E = camera2.K().transpose() * pair.F * camera1.K();
+  }
+  Eigen::Matrix2Xd rays1;
+  Eigen::Matrix2Xd rays2;
+  InlierRays(
+      pair, keypoints1, keypoints2, camera1, camera2, max_rays, &rays1, &rays2);
+  return RotationFromEssential(E, rays1, rays2, rotation);
+}
+
+// Cells of a kCoverageGrid x kCoverageGrid grid over each image that hold an
+// inlier; the fewer of the two images.
+constexpr int kCoverageGrid = 8;
+
+int CoveredCells(const VerifiedTwoViewGeometry& pair,
+                 const KeypointPositions& keypoints1,
+                 const KeypointPositions& keypoints2,
+                 const Eigen::Vector2d& size1,
+                 const Eigen::Vector2d& size2) {
+  std::vector<bool> cells1(kCoverageGrid * kCoverageGrid, false);
+  std::vector<bool> cells2(kCoverageGrid * kCoverageGrid, false);
+  auto cell = [](const KeypointPositions& keypoints,
+                 uint32_t k,
+                 const Eigen::Vector2d& size) {
+    const int x =
+        std::clamp(static_cast<int>(kCoverageGrid * keypoints(k, 0) / size.x()),
+                   0,
+                   kCoverageGrid - 1);
+    const int y =
+        std::clamp(static_cast<int>(kCoverageGrid * keypoints(k, 1) / size.y()),
+                   0,
+                   kCoverageGrid - 1);
+    return y * kCoverageGrid + x;
+  };
+  for (Eigen::Index i = 0; i < pair.inliers.rows(); ++i) {
+    const uint32_t k1 = pair.inliers(i, 0);
+    const uint32_t k2 = pair.inliers(i, 1);
+    if (k1 >= keypoints1.rows() || k2 >= keypoints2.rows()) continue;
+    cells1[cell(keypoints1, k1, size1)] = true;
+    cells2[cell(keypoints2, k2, size2)] = true;
+  }
+  return static_cast<int>(
+      std::min(std::count(cells1.begin(), cells1.end(), true),
+               std::count(cells2.begin(), cells2.end(), true)));
+}
+
+std::string CsvLine(const PairFilterEntry& entry) {
+  std::ostringstream line;
+  line << entry.name1 << ',' << entry.name2 << ',' << entry.num_inliers << ','
+       << entry.strength << ',' << entry.decision.rotation_error << ','
+       << entry.decision.backbone_hops << ',' << entry.decision.in_backbone
+       << ',' << entry.decision.in_tree << ','
+       << LookalikeReasonName(entry.decision.reason) << '\n';
+  return line.str();
+}
+
+}  // namespace
+
+void PairFilterOptions::Check() const {
+  decision.Check();
+  CHECK_OPTION_GE(min_num_inliers, 0);
+  CHECK_OPTION_GE(max_rays_per_pair, 5);
+  CHECK_OPTION_NUM_THREADS(num_threads);
+}
+
+PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
+                                    const PairFilterOptions& options) {
+  options.Check();
+  const Timer timer;
+  PairFilterReport report;
+  report.database_path = database.Path();
+  const std::vector<DatabaseImage> images = database.ReadAllImages();
+  report.num_images = images.size();
+  std::map<camera_t, PinholeIntrinsics> cameras;
+  std::map<camera_t, Eigen::Vector2d> sizes;
+  for (const DatabaseCamera& camera : database.ReadCameras()) {
+    cameras[camera.camera_id] = IntrinsicsOfCamera(camera);
+    sizes[camera.camera_id] =
+        Eigen::Vector2d(std::max<double>(1.0, camera.width),
+                        std::max<double>(1.0, camera.height));
+  }
+  std::map<image_t, int> index;
+  for (size_t i = 0; i < images.size(); ++i) {
+    index[images[i].image_id] = static_cast<int>(i);
+    if (cameras.count(images[i].camera_id) == 0) {
+      ThrowError("database ",
+                 database.Path(),
+                 ": image ",
+                 images[i].name,
+                 " has camera ",
+                 images[i].camera_id,
+                 ", which is not in the cameras table");
+    }
+  }
+  const std::vector<VerifiedTwoViewGeometry> pairs =
+      database.ReadVerifiedTwoViewGeometries(options.min_num_inliers);
+  report.num_verified_pairs = pairs.size();
+  report.num_already_hidden = database.ReadHiddenPairs().size();
+
+  // Keypoint positions of the images in verified pairs (read once).
+  std::vector<KeypointPositions> keypoints(images.size());
+  std::vector<bool> needed(images.size(), false);
+  for (const VerifiedTwoViewGeometry& pair : pairs) {
+    for (const image_t id : {pair.image_id1, pair.image_id2}) {
+      if (index.count(id) == 0) {
+        ThrowError("database ",
+                   database.Path(),
+                   ": pair ",
+                   pair.pair_id,
+                   " names image ",
+                   id,
+                   ", which is not in the images table");
+      }
+      needed[index[id]] = true;
+    }
+  }
+  for (size_t i = 0; i < images.size(); ++i) {
+    if (needed[i])
+      keypoints[i] = database.ReadKeypointPositions(images[i].image_id);
+  }
+
+  std::vector<ViewGraphEdge> edges(pairs.size());
+  ParallelFor(
+      0, static_cast<int>(pairs.size()), options.num_threads, [&](int p) {
+        const VerifiedTwoViewGeometry& pair = pairs[p];
+        ViewGraphEdge& edge = edges[p];
+        edge.pair_id = pair.pair_id;
+        edge.image1 = index.at(pair.image_id1);
+        edge.image2 = index.at(pair.image_id2);
+        edge.num_inliers = static_cast<int>(pair.inliers.rows());
+        edge.strength = CoveredCells(pair,
+                                     keypoints[edge.image1],
+                                     keypoints[edge.image2],
+                                     sizes.at(images[edge.image1].camera_id),
+                                     sizes.at(images[edge.image2].camera_id));
+        edge.has_rotation =
+            MeasureRotation(pair,
+                            keypoints[edge.image1],
+                            keypoints[edge.image2],
+                            cameras.at(images[edge.image1].camera_id),
+                            cameras.at(images[edge.image2].camera_id),
+                            options.max_rays_per_pair,
+                            &edge.rotation);
+      });
+  const std::vector<LookalikeDecision> decisions = DecideLookalikePairs(
+      static_cast<int>(images.size()), edges, options.decision);
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    PairFilterEntry entry;
+    entry.pair_id = pairs[p].pair_id;
+    entry.name1 = images[edges[p].image1].name;
+    entry.name2 = images[edges[p].image2].name;
+    entry.num_inliers = edges[p].num_inliers;
+    entry.strength = edges[p].strength;
+    entry.decision = decisions[p];
+    report.num_without_rotation += !edges[p].has_rotation;
+    report.num_rejected += decisions[p].Rejected();
+    report.entries.push_back(std::move(entry));
+  }
+  if (!options.pairs_csv_path.empty()) {
+    std::string csv =
+        "name1,name2,num_inliers,covered_cells,rotation_error,backbone_hops,in_"
+        "backbone,"
+        "in_tree,decision\n";
+    for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
+    WriteFileAtomically(options.pairs_csv_path, csv);
+  }
+  report.seconds = timer.ElapsedSeconds();
+  return report;
+}
+
+std::vector<image_pair_t> RejectedPairIds(const PairFilterReport& report) {
+  std::vector<image_pair_t> ids;
+  for (const PairFilterEntry& entry : report.entries) {
+    if (entry.decision.Rejected()) ids.push_back(entry.pair_id);
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+PairFilterReport FilterLookalikePairs(const std::string& database_path,
+                                      const PairFilterOptions& options) {
+  options.Check();
+  const Timer timer;
+  PairFilterReport report;
+  {
+    const TwoViewGeometryStore database(database_path);
+    report = FindLookalikePairs(database, options);
+  }
+  report.database_path = database_path;
+  if (report.num_rejected > 0) {
+    std::vector<HiddenTwoViewGeometry> hidden;
+    for (const PairFilterEntry& entry : report.entries) {
+      if (!entry.decision.Rejected()) continue;
+      HiddenTwoViewGeometry pair;
+      pair.pair_id = entry.pair_id;
+      pair.reason = LookalikeReasonName(entry.decision.reason);
+      pair.score = entry.decision.rotation_error;
+      hidden.push_back(pair);
+    }
+    DatabaseWorkingCopy working_copy(database_path);
+    working_copy.MarkWritten();
+    {
+      TwoViewGeometryStore copy(working_copy.Path(),
+                                Database::Mode::kReadWrite);
+      copy.HidePairs(hidden);
+    }
+    const CriticalSection critical;
+    working_copy.Commit();
+  }
+  report.seconds = timer.ElapsedSeconds();
+  return report;
+}
+
+size_t RestoreLookalikePairs(const std::string& database_path) {
+  {
+    const TwoViewGeometryStore database(database_path);
+    if (database.ReadHiddenPairs().empty()) return 0;
+  }
+  DatabaseWorkingCopy working_copy(database_path);
+  working_copy.MarkWritten();
+  size_t num_restored = 0;
+  {
+    TwoViewGeometryStore copy(working_copy.Path(), Database::Mode::kReadWrite);
+    num_restored = copy.RestoreHiddenPairs();
+  }
+  const CriticalSection critical;
+  working_copy.Commit();
+  return num_restored;
+}
+
+void PrintPairFilterReport(const PairFilterReport& report,
+                           const bool list_pairs) {
+  std::map<std::string, size_t> by_reason;
+  for (const PairFilterEntry& entry : report.entries) {
+    if (entry.decision.Rejected()) {
+      ++by_reason[LookalikeReasonName(entry.decision.reason)];
+    }
+  }
+  std::printf(
+      "look-alike filter: %zu images, %zu verified pairs, %zu hidden as "
+      "look-alikes (%zu hidden earlier), %zu without a relative rotation, "
+      "%.2f s\n",
+      report.num_images,
+      report.num_verified_pairs,
+      report.num_rejected,
+      report.num_already_hidden,
+      report.num_without_rotation,
+      report.seconds);
+  for (const auto& [reason, count] : by_reason) {
+    std::printf("  %-14s %zu\n", reason.c_str(), count);
+  }
+  if (!list_pairs) return;
+  for (const PairFilterEntry& entry : report.entries) {
+    if (!entry.decision.Rejected()) continue;
+    std::printf("  hidden %s %s  inliers %d  rotation error %.1f deg  (%s)\n",
+                entry.name1.c_str(),
+                entry.name2.c_str(),
+                entry.num_inliers,
+                entry.decision.rotation_error,
+                LookalikeReasonName(entry.decision.reason));
+  }
+}
+
+}  // namespace colmap_gcn

@@ -1,0 +1,76 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "disambiguation/lookalike_decision.h"
+#include "scene/database.h"
+#include "scene/two_view_geometry_store.h"
+
+namespace colmap_gcn {
+
+// The look-alike (duplicate structure) filter on a matched database: which
+// verified pairs to hide from COLMAP's mapper (docs/lookalike.md).
+struct PairFilterOptions {
+  LookalikeDecisionOptions decision;
+
+  // Pairs with fewer inliers are not verified (COLMAP's
+  // --SiftMatching.min_num_inliers).
+  int min_num_inliers = kDefaultMinNumInliers;
+
+  // Inlier rays used for the cheirality test of each pair (evenly spaced
+  // over the pair's inliers).
+  int max_rays_per_pair = 200;
+
+  // -1: all cores; the decisions do not depend on it.
+  int num_threads = -1;
+
+  // Where to write one CSV line per verified pair (image names, inliers,
+  // rotation error, hops, decision); empty: none.
+  std::string pairs_csv_path = "";
+
+  void Check() const;
+};
+
+// One verified pair with its decision.
+struct PairFilterEntry {
+  image_pair_t pair_id = kInvalidImagePairId;
+  std::string name1;
+  std::string name2;
+  int num_inliers = 0;
+  int strength = 0;  // ViewGraphEdge::strength
+  LookalikeDecision decision;
+};
+
+struct PairFilterReport {
+  std::string database_path;
+  size_t num_images = 0;
+  size_t num_verified_pairs = 0;         // before this run
+  size_t num_without_rotation = 0;       // no relative rotation recovered
+  size_t num_already_hidden = 0;         // by an earlier run
+  std::vector<PairFilterEntry> entries;  // every verified pair
+  size_t num_rejected = 0;               // hidden by this run
+  double seconds = 0;
+};
+
+// Decides every verified pair of a database without changing it.
+PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
+                                    const PairFilterOptions& options);
+
+// The rejected pairs' ids (sorted), for a caller that must not trust them
+// (the adaptive pairing loop).
+std::vector<image_pair_t> RejectedPairIds(const PairFilterReport& report);
+
+// FindLookalikePairs, then hides the rejected pairs in the database through
+// a working copy that replaces it only once verified (docs/reliability.md).
+PairFilterReport FilterLookalikePairs(const std::string& database_path,
+                                      const PairFilterOptions& options);
+
+// Puts every pair hidden by the filter back; returns how many. Through a
+// working copy as well.
+size_t RestoreLookalikePairs(const std::string& database_path);
+
+// What was removed and why.
+void PrintPairFilterReport(const PairFilterReport& report, bool list_pairs);
+
+}  // namespace colmap_gcn

@@ -1,0 +1,190 @@
+#include "disambiguation/lookalike_decision.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <Eigen/Geometry>
+
+#include "disambiguation/relative_pose.h"
+
+namespace colmap_gcn {
+namespace {
+
+Eigen::Matrix3d RotZ(double degrees) {
+  return Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d::UnitZ())
+      .toRotationMatrix();
+}
+
+// A little rotation noise, deterministic per seed.
+Eigen::Matrix3d Noise(std::mt19937* rng, double degrees) {
+  std::normal_distribution<double> normal(0.0, degrees * M_PI / 180.0);
+  const Eigen::Vector3d axis_angle(normal(*rng), normal(*rng), normal(*rng));
+  if (axis_angle.norm() == 0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(axis_angle.norm(), axis_angle.normalized())
+      .toRotationMatrix();
+}
+
+struct RingGraph {
+  std::vector<ViewGraphEdge> edges;
+  std::vector<bool> lookalike;
+};
+
+// n cameras on a circle looking inwards at an object whose front and back
+// look the same: real edges join cameras up to `reach` steps apart; with
+// `twins`, every camera also verifies with the ones facing the other side
+// (opposite +- 1 step), whose matches say they stand where its twin would:
+// their measured rotation is off by 180 degrees about the vertical.
+RingGraph MakeRing(int n, int reach, bool twins, uint64_t seed) {
+  std::mt19937 rng(seed);
+  RingGraph graph;
+  const double step = 360.0 / n;
+  auto add = [&](int i, int j, int inliers, double measured, bool fake) {
+    ViewGraphEdge edge;
+    edge.image1 = std::min(i, j);
+    edge.image2 = std::max(i, j);
+    edge.pair_id = static_cast<image_pair_t>(edge.image1) * 1000 + edge.image2;
+    edge.num_inliers = inliers;
+    edge.has_rotation = true;
+    // Camera k has world-to-camera rotation RotZ(-k * step); the measured
+    // relative rotation of (image1, image2) is R2 * R1^T.
+    const double angle = i < j ? measured : -measured;
+    edge.rotation = Noise(&rng, 1.0) * RotZ(-angle);
+    graph.edges.push_back(edge);
+    graph.lookalike.push_back(fake);
+  };
+  for (int i = 0; i < n; ++i) {
+    for (int d = 1; d <= reach; ++d) {
+      const int j = (i + d) % n;
+      add(i, j, 400 - 60 * d, d * step, false);
+    }
+  }
+  if (twins) {
+    for (int i = 0; i < n; ++i) {
+      for (int d = -1; d <= 1; ++d) {
+        const int j = (i + n / 2 + d + n) % n;
+        if (j <= i) continue;
+        // True offset (n/2 + d) steps; the print says d steps.
+        add(i, j, 150 - 20 * std::abs(d), (n / 2 + d) * step - 180.0, true);
+      }
+    }
+  }
+  return graph;
+}
+
+TEST(LookalikeDecision, RejectsEveryTwinPairOfAPrintedRingAndKeepsTheRest) {
+  const RingGraph graph = MakeRing(24, 3, /*twins=*/true, 1);
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, LookalikeDecisionOptions());
+  ASSERT_EQ(decisions.size(), graph.edges.size());
+  int num_fake = 0;
+  for (size_t e = 0; e < decisions.size(); ++e) {
+    EXPECT_EQ(decisions[e].Rejected(), graph.lookalike[e])
+        << graph.edges[e].image1 << "-" << graph.edges[e].image2 << " error "
+        << decisions[e].rotation_error;
+    if (graph.lookalike[e]) {
+      ++num_fake;
+      EXPECT_EQ(decisions[e].reason, LookalikeReason::kRotationLoop);
+      EXPECT_GT(decisions[e].rotation_error, 150.0);
+    }
+  }
+  EXPECT_EQ(num_fake, 36);
+}
+
+TEST(LookalikeDecision, KeepsEveryPairOfAnOrdinaryRing) {
+  const RingGraph graph = MakeRing(30, 4, /*twins=*/false, 2);
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(30, graph.edges, LookalikeDecisionOptions());
+  for (const LookalikeDecision& decision : decisions) {
+    EXPECT_FALSE(decision.Rejected()) << decision.rotation_error;
+    // Drift of 1-degree noise chained around the ring.
+    EXPECT_LT(decision.rotation_error, 20.0);
+  }
+}
+
+TEST(LookalikeDecision, DoesNotDependOnTheOrderOfTheEdges) {
+  const RingGraph graph = MakeRing(24, 3, /*twins=*/true, 3);
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, LookalikeDecisionOptions());
+  std::vector<int> order(graph.edges.size());
+  for (size_t e = 0; e < order.size(); ++e) order[e] = static_cast<int>(e);
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  std::vector<ViewGraphEdge> shuffled;
+  for (const int e : order) shuffled.push_back(graph.edges[e]);
+  const std::vector<LookalikeDecision> shuffled_decisions =
+      DecideLookalikePairs(24, shuffled, LookalikeDecisionOptions());
+  for (size_t k = 0; k < order.size(); ++k) {
+    const LookalikeDecision& a = decisions[order[k]];
+    const LookalikeDecision& b = shuffled_decisions[k];
+    EXPECT_EQ(a.reason, b.reason);
+    EXPECT_EQ(a.in_tree, b.in_tree);
+    EXPECT_EQ(a.backbone_hops, b.backbone_hops);
+    EXPECT_DOUBLE_EQ(a.rotation_error, b.rotation_error);
+  }
+}
+
+TEST(LookalikeDecision, PairsWithoutARotationAreKept) {
+  RingGraph graph = MakeRing(24, 3, /*twins=*/true, 4);
+  for (ViewGraphEdge& edge : graph.edges) edge.has_rotation = false;
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, LookalikeDecisionOptions());
+  for (const LookalikeDecision& decision : decisions) {
+    EXPECT_FALSE(decision.Rejected());
+    EXPECT_EQ(decision.rotation_error, -1);
+  }
+}
+
+TEST(LookalikeDecision, ContextTestRejectsPairsFarApartInTheBackbone) {
+  const RingGraph graph = MakeRing(24, 3, /*twins=*/true, 5);
+  LookalikeDecisionOptions options;
+  options.max_rotation_error = 180.0;  // rotation test off
+  options.max_backbone_hops = 3;
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, options);
+  for (size_t e = 0; e < decisions.size(); ++e) {
+    EXPECT_EQ(decisions[e].Rejected(), graph.lookalike[e]);
+    if (graph.lookalike[e]) {
+      EXPECT_EQ(decisions[e].reason, LookalikeReason::kContext);
+    }
+  }
+}
+
+TEST(LookalikeDecision, BadOptionsAreNamed) {
+  LookalikeDecisionOptions options;
+  options.backbone_neighbors = 0;
+  EXPECT_THROW(options.Check(), std::exception);
+  options = LookalikeDecisionOptions();
+  options.max_rotation_error = 0;
+  EXPECT_THROW(options.Check(), std::exception);
+}
+
+TEST(RelativePose, RotationFromEssentialPicksThePointsInFront) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.2, 1.0, 0.1).normalized())
+          .toRotationMatrix();
+  const Eigen::Vector3d t(-1.0, 0.1, 0.2);
+  Eigen::Matrix2Xd rays1(2, 50);
+  Eigen::Matrix2Xd rays2(2, 50);
+  for (int i = 0; i < 50; ++i) {
+    const Eigen::Vector3d X(uniform(rng), uniform(rng), 5.0 + uniform(rng));
+    const Eigen::Vector3d Y = R * X + t;
+    rays1.col(i) = X.hnormalized();
+    rays2.col(i) = Y.hnormalized();
+  }
+  Eigen::Matrix3d tx;
+  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+  Eigen::Matrix3d estimated;
+  ASSERT_TRUE(RotationFromEssential(tx * R, rays1, rays2, &estimated));
+  EXPECT_LT(RotationAngleDegrees(estimated.transpose() * R), 1e-6);
+  // Scale and sign of E do not matter.
+  ASSERT_TRUE(RotationFromEssential(-3.0 * tx * R, rays1, rays2, &estimated));
+  EXPECT_LT(RotationAngleDegrees(estimated.transpose() * R), 1e-6);
+  EXPECT_FALSE(
+      RotationFromEssential(Eigen::Matrix3d::Zero(), rays1, rays2, &estimated));
+}
+
+}  // namespace
+}  // namespace colmap_gcn
