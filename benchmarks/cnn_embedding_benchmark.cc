@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "controllers/gcn_model_pairing.h"
+#include "retrieval/model_embedding.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/global_descriptors.h"
 #include "training/gcn_trainer.h"

@@ -93,6 +93,33 @@ void BenchmarkRunner::LoadGroundTruth(SceneContext* scene) {
   scene->has_gt = scene->gt.images.size() >= 3;
 }
 
+namespace {
+
+// Labels of a rendered scene from its exact overlaps, for the images in the
+// database.
+PairLabels SyntheticOverlapLabels(const std::string& overlap_path,
+                                  const std::set<std::string>& db_names) {
+  const PairOverlapTable table = ReadPairOverlapTable(overlap_path);
+  std::set<std::string> names;
+  for (const PairOverlap& pair : table.Pairs()) {
+    if (db_names.count(pair.name1)) names.insert(pair.name1);
+    if (db_names.count(pair.name2)) names.insert(pair.name2);
+  }
+  PairLabels labels({names.begin(), names.end()},
+                    /*has_overlap=*/true,
+                    /*has_common_track_ratio=*/false);
+  for (const PairOverlap& pair : table.Pairs()) {
+    // MO = shared / min(visible1, visible2), the same normalisation as the
+    // common-track ratio, so both thresholds read alike.
+    if (pair.num_shared > 0 && labels.IsLabelled(pair.name1, pair.name2)) {
+      labels.SetOverlap(pair.name1, pair.name2, pair.MaxOverlap());
+    }
+  }
+  return labels;
+}
+
+}  // namespace
+
 void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
   const std::string labels_dir = JoinPaths(scene->dir, "labels");
   CreateDirIfNotExists(labels_dir);
@@ -105,27 +132,10 @@ void BenchmarkRunner::BuildLabels(SceneContext* scene, SceneResult* result) {
     const std::set<std::string> db_names(scene->image_names.begin(),
                                          scene->image_names.end());
     switch (scene->dataset.label_source) {
-      case LabelSource::kSyntheticOverlap: {
-        const PairOverlapTable table =
-            ReadPairOverlapTable(scene->dataset.overlap_path);
-        std::set<std::string> names;
-        for (const PairOverlap& pair : table.Pairs()) {
-          if (db_names.count(pair.name1)) names.insert(pair.name1);
-          if (db_names.count(pair.name2)) names.insert(pair.name2);
-        }
-        scene->labels = PairLabels({names.begin(), names.end()},
-                                   /*has_overlap=*/true,
-                                   /*has_common_track_ratio=*/false);
-        for (const PairOverlap& pair : table.Pairs()) {
-          // MO = shared / min(visible1, visible2), the same normalisation
-          // as the common-track ratio, so both thresholds read alike.
-          if (pair.num_shared > 0 &&
-              scene->labels.IsLabelled(pair.name1, pair.name2)) {
-            scene->labels.SetOverlap(pair.name1, pair.name2, pair.MaxOverlap());
-          }
-        }
+      case LabelSource::kSyntheticOverlap:
+        scene->labels =
+            SyntheticOverlapLabels(scene->dataset.overlap_path, db_names);
         break;
-      }
       case LabelSource::kGroundTruthTriangulation: {
         std::string matched_db;
         if (options_.label_pair_filter.Enabled()) {

@@ -483,7 +483,8 @@ TEST_F(BadInput, BenchmarkUnknownSyntheticFamily) {
   ExpectBenchmarkError(
       "--datasets synth:gothic:10",
       {"dataset \"synth:gothic:10\"",
-       "family must be one of ordinary|repetitive|symmetric (got \"gothic\")"});
+       "family must be one of ordinary|repetitive|symmetric|twin_print (got "
+       "\"gothic\")"});
 }
 
 TEST_F(BadInput, BenchmarkSyntheticSceneOfOneImage) {
@@ -590,7 +591,8 @@ TEST_F(BadInput, SynthUnknownFamily) {
   ExpectOneLineError(
       RunColmap("gcn_synth --output_path " + ShellQuote(Path("synth")) +
                 " --GcnSynth.family gothic"),
-      {"--GcnSynth.family must be one of ordinary|repetitive|symmetric (got "
+      {"--GcnSynth.family must be one of "
+       "ordinary|repetitive|symmetric|twin_print (got "
        "\"gothic\")"});
   EXPECT_FALSE(ExistsDir(Path("synth")));
 }
