@@ -56,8 +56,10 @@ struct GcnMatchingOptions {
   } matching;
 
   // After matching, hide verified pairs of duplicate structure from COLMAP's
-  // mapper (docs/lookalike.md); its min_num_inliers is matching's.
-  bool filter_lookalikes = true;
+  // mapper (docs/lookalike.md); its min_num_inliers is matching's. Off by
+  // default: on ordinary scenes it still hides real pairs (docs/lookalike.md,
+  // "Where it fails").
+  bool filter_lookalikes = false;
   PairFilterOptions lookalike_filter;
 
   // Passed to COLMAP's matches_importer unchanged: the user's other
