@@ -52,18 +52,24 @@ void InlierRays(const VerifiedTwoViewGeometry& pair,
 }
 
 // The measured relative rotation of a pair: from E when COLMAP verified it
-// calibrated, otherwise from F and the cameras' intrinsics.
+// calibrated with trusted focal lengths (use_E), otherwise from F and the
+// cameras' (possibly self-calibrated) intrinsics.
 bool MeasureRotation(const VerifiedTwoViewGeometry& pair,
                      const KeypointPositions& keypoints1,
                      const KeypointPositions& keypoints2,
                      const PinholeIntrinsics& camera1,
                      const PinholeIntrinsics& camera2,
+                     const bool use_E,
                      const int max_rays,
                      Eigen::Matrix3d* rotation) {
   Eigen::Matrix3d E = pair.E;
-  if (pair.config != 2 || E.norm() < 1e-12) {
-    if (pair.F.norm() < 1e-12) return false;
-    E = camera2.K().transpose() * pair.F * camera1.K();
+  const bool has_E = pair.config == 2 && E.norm() >= 1e-12;
+  if (!(use_E && has_E)) {
+    if (pair.F.norm() >= 1e-12) {
+      E = camera2.K().transpose() * pair.F * camera1.K();
+    } else if (!has_E) {
+      return false;
+    }
   }
   Eigen::Matrix2Xd rays1;
   Eigen::Matrix2Xd rays2;
@@ -108,6 +114,57 @@ int CoveredCells(const VerifiedTwoViewGeometry& pair,
                std::count(cells2.begin(), cells2.end(), true)));
 }
 
+// Replaces the intrinsics of the cameras without a trusted focal length by
+// self-calibrated ones (focal_calibration.h), from the F of the pairs
+// verified calibrated or uncalibrated (planar and panoramic F say nothing
+// about the focal length).
+void SelfCalibrateCameras(const std::vector<DatabaseImage>& images,
+                          const std::map<image_t, int>& index,
+                          const std::vector<VerifiedTwoViewGeometry>& pairs,
+                          const std::map<camera_t, bool>& trusted_focal,
+                          const FocalCalibrationOptions& options,
+                          std::map<camera_t, PinholeIntrinsics>* cameras,
+                          PairFilterReport* report) {
+  std::vector<camera_t> ids;
+  std::map<camera_t, int> camera_index;
+  std::vector<PinholeIntrinsics> intrinsics;
+  std::vector<bool> trusted;
+  for (const auto& [id, camera] : *cameras) {
+    camera_index[id] = static_cast<int>(ids.size());
+    ids.push_back(id);
+    intrinsics.push_back(camera);
+    trusted.push_back(trusted_focal.at(id));
+    report->num_guessed_cameras += !trusted.back();
+  }
+  if (report->num_guessed_cameras == 0) return;
+  std::vector<int> num_images(ids.size(), 0);
+  for (const DatabaseImage& image : images) {
+    ++num_images[camera_index.at(image.camera_id)];
+  }
+  std::vector<FundamentalPair> fundamentals;
+  for (const VerifiedTwoViewGeometry& pair : pairs) {
+    if ((pair.config != 2 && pair.config != 3) || pair.F.norm() < 1e-12) {
+      continue;
+    }
+    FundamentalPair f;
+    f.camera1 = camera_index.at(images[index.at(pair.image_id1)].camera_id);
+    f.camera2 = camera_index.at(images[index.at(pair.image_id2)].camera_id);
+    f.F = pair.F;
+    fundamentals.push_back(f);
+  }
+  const FocalCalibrationResult result = SelfCalibrateFocalLengths(
+      intrinsics, trusted, num_images, fundamentals, options);
+  std::vector<double> guessed_scales;
+  for (size_t c = 0; c < ids.size(); ++c) {
+    (*cameras)[ids[c]] = result.cameras[c];
+    if (!trusted[c]) guessed_scales.push_back(result.scales[c]);
+  }
+  std::sort(guessed_scales.begin(), guessed_scales.end());
+  report->median_focal_scale = guessed_scales[guessed_scales.size() / 2];
+  report->focal_cost_before = result.cost_before;
+  report->focal_cost_after = result.cost_after;
+}
+
 std::string CsvLine(const PairFilterEntry& entry) {
   std::ostringstream line;
   line << entry.name1 << ',' << entry.name2 << ',' << entry.num_inliers << ','
@@ -122,6 +179,7 @@ std::string CsvLine(const PairFilterEntry& entry) {
 
 void PairFilterOptions::Check() const {
   decision.Check();
+  focal_calibration.Check();
   CHECK_OPTION_GE(min_num_inliers, 0);
   CHECK_OPTION_GE(max_rays_per_pair, 5);
   CHECK_OPTION_NUM_THREADS(num_threads);
@@ -137,8 +195,11 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
   report.num_images = images.size();
   std::map<camera_t, PinholeIntrinsics> cameras;
   std::map<camera_t, Eigen::Vector2d> sizes;
+  std::map<camera_t, bool> trusted_focal;
   for (const DatabaseCamera& camera : database.ReadCameras()) {
     cameras[camera.camera_id] = IntrinsicsOfCamera(camera);
+    trusted_focal[camera.camera_id] =
+        camera.has_prior_focal_length || !options.self_calibrate_focal;
     sizes[camera.camera_id] =
         Eigen::Vector2d(std::max<double>(1.0, camera.width),
                         std::max<double>(1.0, camera.height));
@@ -183,6 +244,16 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
       keypoints[i] = database.ReadKeypointPositions(images[i].image_id);
   }
 
+  if (options.self_calibrate_focal) {
+    SelfCalibrateCameras(images,
+                         index,
+                         pairs,
+                         trusted_focal,
+                         options.focal_calibration,
+                         &cameras,
+                         &report);
+  }
+
   std::vector<ViewGraphEdge> edges(pairs.size());
   ParallelFor(
       0, static_cast<int>(pairs.size()), options.num_threads, [&](int p) {
@@ -203,6 +274,8 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                             keypoints[edge.image2],
                             cameras.at(images[edge.image1].camera_id),
                             cameras.at(images[edge.image2].camera_id),
+                            trusted_focal.at(images[edge.image1].camera_id) &&
+                                trusted_focal.at(images[edge.image2].camera_id),
                             options.max_rays_per_pair,
                             &edge.rotation);
       });
@@ -310,6 +383,16 @@ void PrintPairFilterReport(const PairFilterReport& report,
       report.num_already_hidden,
       report.num_without_rotation,
       report.seconds);
+  if (report.num_guessed_cameras > 0) {
+    std::printf(
+        "  %zu cameras without a trusted focal length: focal lengths "
+        "self-calibrated (median scale %.3f, 1 = declined; essential "
+        "inconsistency %.4f -> %.4f)\n",
+        report.num_guessed_cameras,
+        report.median_focal_scale,
+        report.focal_cost_before,
+        report.focal_cost_after);
+  }
   for (const auto& [reason, count] : by_reason) {
     std::printf("  %-14s %zu\n", reason.c_str(), count);
   }

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "disambiguation/focal_calibration.h"
 #include "disambiguation/lookalike_decision.h"
 #include "scene/database.h"
 #include "scene/two_view_geometry_store.h"
@@ -21,6 +22,12 @@ struct PairFilterOptions {
   // Inlier rays used for the cheirality test of each pair (evenly spaced
   // over the pair's inliers).
   int max_rays_per_pair = 200;
+
+  // Cameras whose focal length is COLMAP's guess (prior_focal_length 0)
+  // get a focal length self-calibrated from the verified pairs' F before
+  // the rotations are recovered; off: the database's values are used.
+  bool self_calibrate_focal = true;  // default true
+  FocalCalibrationOptions focal_calibration;
 
   // -1: all cores; the decisions do not depend on it.
   int num_threads = -1;
@@ -50,6 +57,12 @@ struct PairFilterReport {
   size_t num_already_hidden = 0;         // by an earlier run
   std::vector<PairFilterEntry> entries;  // every verified pair
   size_t num_rejected = 0;               // hidden by this run
+  // Focal self-calibration: guessed cameras, the median scale applied to
+  // their focal lengths and the median essential inconsistency before/after.
+  size_t num_guessed_cameras = 0;
+  double median_focal_scale = 1;
+  double focal_cost_before = 0;
+  double focal_cost_after = 0;
   double seconds = 0;
 };
 
