@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "retrieval/model_embedding.h"
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/global_descriptors.h"
+#include "retrieval/model_embedding.h"
 #include "training/gcn_trainer.h"
 #include "training/gcn_training.h"
 #include "util/error.h"

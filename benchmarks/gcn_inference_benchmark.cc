@@ -23,9 +23,9 @@
 #include <benchmark/benchmark.h>
 
 #include "gcn/gcn_inference.h"
-#include "pairing/gcn_pair_generator.h"
 #include "gcn_benchmark_data.h"
 #include "math/sgemm.h"
+#include "pairing/gcn_pair_generator.h"
 #include "training/gcn_network.h"
 #include "training/gcn_trainer.h"
 #include "util/timer.h"

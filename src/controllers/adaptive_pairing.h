@@ -9,9 +9,9 @@
 
 #include "controllers/adaptive_calibration.h"
 #include "pairing/gcn_model_pairing.h"
+#include "pairing/knn_pairing.h"
 #include "pairing/pair_generator_spec.h"
 #include "pairing/pairing.h"
-#include "pairing/knn_pairing.h"
 #include "util/timer.h"
 #include "util/types.h"
 

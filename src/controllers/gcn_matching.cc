@@ -56,16 +56,7 @@ class RunFiles {
   }
 
   void RemoveSqliteSideFiles() const {
-    const std::string wal_path = database_path_ + "-wal";
-    const std::string shm_path = database_path_ + "-shm";
-    std::error_code ec;
-    // An empty "-wal" holds nothing, whoever made it (a reader of a WAL
-    // database leaves one); "-shm" is only an index of the "-wal".
-    if (std::filesystem::is_regular_file(wal_path, ec) &&
-        std::filesystem::file_size(wal_path, ec) == 0) {
-      std::filesystem::remove(wal_path, ec);
-    }
-    if (!ExistsFile(wal_path)) std::filesystem::remove(shm_path, ec);
+    RemoveEmptySqliteSideFiles(database_path_);
   }
 
  private:

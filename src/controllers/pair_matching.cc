@@ -336,11 +336,10 @@ void MarkLookalikesUnverified(const std::string& work_path,
   const std::vector<image_pair_t> rejected =
       RejectedPairIds(FindLookalikePairs(copy, filter_options));
   for (PairVerification& verification : *verifications) {
-    if (std::binary_search(
-            rejected.begin(),
-            rejected.end(),
-            ImagePairToPairId(verification.image_id1,
-                              verification.image_id2))) {
+    if (std::binary_search(rejected.begin(),
+                           rejected.end(),
+                           ImagePairToPairId(verification.image_id1,
+                                             verification.image_id2))) {
       verification.config = 0;
     }
   }

@@ -167,8 +167,7 @@ GcnMatchingOptions WithoutCaches(GcnMatchingOptions options) {
   options.generators.Get<AdaptiveGcnPairingOptions>("adaptive_recall")
       .gcn.use_vlad_cache = false;
   options.generators.Get<AdaptiveGcnPairingOptions>("adaptive_recall")
-      .knn.use_cache =
-      false;
+      .knn.use_cache = false;
   options.generators.Get<GcnModelPairingOptions>("gcn").use_vlad_cache = false;
   options.generators.Get<GraphMatchPairingOptions>("graphmatch").knn.use_cache =
       false;

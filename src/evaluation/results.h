@@ -29,8 +29,8 @@ struct MethodResult {
   size_t num_lookalike_removed_wrong = 0;
   size_t num_lookalike_removed_matchable = 0;
   double filter_seconds = 0;
-  double pairing_seconds = 0;     // choosing the pairs
-  double matching_seconds = 0;    // COLMAP matching + verification
+  double pairing_seconds = 0;   // choosing the pairs
+  double matching_seconds = 0;  // COLMAP matching + verification
   double mapping_seconds = 0;
   std::string session;  // the benchmark run that matched
   std::string same_as;  // the method whose run this row repeats, or ""

@@ -6,6 +6,7 @@
 #include "evaluation/view_graph_figure.h"
 #include "pairing/pairs_io.h"
 #include "scene/database.h"
+#include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/logging.h"
@@ -71,6 +72,7 @@ std::string WriteGcnMatchingFigure(const std::string& database_path,
     graph.verified =
         ReadVerifiedImagePairs(database, options.matching.min_num_inliers);
   }
+  RemoveEmptySqliteSideFiles(database_path);
   if (ExistsFile(pairs_path)) graph.attempted = ReadPairsFile(pairs_path);
   graph.title = "View graph of " + options.pairing + " pairing";
   const std::string path = ViewGraphFigurePath(database_path, options);

@@ -19,8 +19,9 @@ int RunGcnSynth(int argc, char** argv) {
       "and <output_path>/gt (COLMAP text model, pair_overlap.csv, "
       "distractors.txt, scene.txt).");
   manager.AddRequiredOption("output_path", &output_path);
-  manager.AddDefaultOption(
-      "GcnSynth.family", &options.family, "ordinary, repetitive, symmetric or twin_print");
+  manager.AddDefaultOption("GcnSynth.family",
+                           &options.family,
+                           "ordinary, repetitive, symmetric or twin_print");
   manager.AddDefaultOption("GcnSynth.num_images", &options.num_images);
   manager.AddDefaultOption("GcnSynth.num_distractors",
                            &options.num_distractors,

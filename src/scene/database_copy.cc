@@ -321,4 +321,19 @@ void MergeDatabases(const std::vector<std::string>& database_paths,
   sqlite3_close(db);
 }
 
+void RemoveEmptySqliteSideFiles(const std::string& path) {
+  // SQLite keeps them beside the file a symbolic link points to.
+  std::error_code ec;
+  std::string real_path = std::filesystem::weakly_canonical(path, ec).string();
+  if (ec || real_path.empty()) real_path = path;
+  const std::string wal_path = real_path + "-wal";
+  if (std::filesystem::is_regular_file(wal_path, ec) &&
+      std::filesystem::file_size(wal_path, ec) == 0) {
+    std::filesystem::remove(wal_path, ec);
+  }
+  if (!std::filesystem::exists(wal_path, ec)) {
+    std::filesystem::remove(real_path + "-shm", ec);
+  }
+}
+
 }  // namespace colmap_gcn

@@ -17,6 +17,12 @@ const char* const kDatabaseSideFileSuffixes[] = {"-wal", "-shm", "-journal"};
 // Removes path and its side files (missing files are fine).
 void RemoveDatabaseFiles(const std::string& path);
 
+// Removes an empty "<path>-wal" (a reader of a WAL database leaves one: it
+// holds nothing) and then a "<path>-shm" without its "-wal" (only an index
+// of it), beside the file path resolves to. A "-wal" with content is never
+// touched.
+void RemoveEmptySqliteSideFiles(const std::string& path);
+
 // A consistent snapshot of source (committed WAL content included) written to
 // target with SQLite's online backup API. Whatever was at target, including
 // stale side files of an earlier copy, is removed first. The copy gets the

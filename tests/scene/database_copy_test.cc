@@ -98,6 +98,22 @@ TEST_F(DatabaseFiles, CopyRemovesStaleSideFilesOfTheTarget) {
   EXPECT_EQ(QuerySqlInt(copy, "SELECT COUNT(*) FROM images;"), 3);
 }
 
+TEST_F(DatabaseFiles, EmptySideFilesGoAWalWithContentStays) {
+  // A "-wal" with committed content is the database's data: kept.
+  RemoveEmptySqliteSideFiles(crashed_);
+  EXPECT_TRUE(ExistsFile(crashed_ + "-wal"));
+  EXPECT_EQ(NumGeometries(crashed_), 2);
+  // Empty ones, reached through a symbolic link, go.
+  WriteFileAtomically(base_ + "-wal", "");
+  WriteFileAtomically(base_ + "-shm", "index");
+  const std::string link = JoinPaths(dir_.Path(), "link.db");
+  fs::create_symlink(base_, link);
+  RemoveEmptySqliteSideFiles(link);
+  EXPECT_FALSE(ExistsFile(base_ + "-wal"));
+  EXPECT_FALSE(ExistsFile(base_ + "-shm"));
+  EXPECT_EQ(QuerySqlInt(base_, "SELECT COUNT(*) FROM images;"), 3);
+}
+
 TEST_F(DatabaseFiles, CopyKeepsThePermissionBits) {
   chmod(base_.c_str(), 0640);
   const std::string copy = JoinPaths(dir_.Path(), "copy.db");
