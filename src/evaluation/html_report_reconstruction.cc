@@ -6,6 +6,7 @@
 #include "evaluation/html_report.h"
 #include "evaluation/view_graph_figure.h"
 #include "pairing/pairs_io.h"
+#include "scene/database_copy.h"
 #include "scene/reconstruction.h"
 #include "scene/reconstruction_stats.h"
 #include "util/file.h"
@@ -185,6 +186,8 @@ std::string ReconstructionReportBody(const HtmlReportOptions& options) {
     graph.image_names = ReadImageNamesSorted(database);
     graph.verified = ReadVerifiedImagePairs(database, options.min_num_inliers);
   }
+  // A reader of a WAL database leaves an empty "-wal" and "-shm" beside it.
+  RemoveEmptySqliteSideFiles(JoinPaths(workspace, "database.db"));
   const std::string pairs_path = PairsPath(workspace, run);
   if (!pairs_path.empty()) graph.attempted = ReadPairsFile(pairs_path);
   std::vector<ModelRow> models;
