@@ -180,6 +180,7 @@ PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptiveSpec(
         "adaptive: weight of embedding similarity in the prior (percentiles "
         "of the GCN score and of the similarity); 0: the GCN score alone");
   };
+  spec.uses_verification = true;
   spec.create = [name, stop_rule](const AdaptiveGcnPairingOptions& options,
                                   const PairGeneratorContext& context)
       -> std::unique_ptr<PairGenerator> {
@@ -255,6 +256,7 @@ PairGeneratorSpec<GraphMatchPairingOptions> GraphMatchPairGeneratorSpec() {
     KnnPairGeneratorSpec().add_options(manager, &options->knn);
     AddAdaptiveOptions(manager, &options->adaptive);
   };
+  spec.uses_verification = true;
   spec.create = [](const GraphMatchPairingOptions& options,
                    const PairGeneratorContext& context)
       -> std::unique_ptr<PairGenerator> {

@@ -3,6 +3,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "controllers/pair_generators.h"
 #include "pairing/pairs_io.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -67,9 +68,8 @@ size_t ExportPairs(const std::string& database_path,
                    const PairExportOptions& export_options) {
   options.Check();
   export_options.Check();
-  // Known before minutes of embedding; the check after creating the
-  // generator covers any other such generator.
-  if (options.pairing == "adaptive" || options.pairing == "graphmatch") {
+  // Known before minutes of embedding.
+  if (PairGenerators().UsesVerification(options.pairing)) {
     ThrowChosenByVerification(options.pairing);
   }
   if (!ExistsFile(database_path)) {
@@ -85,9 +85,6 @@ size_t ExportPairs(const std::string& database_path,
   }
   std::unique_ptr<PairGenerator> generator =
       CreatePairGenerator(options, database);
-  if (generator->UsesVerification()) {
-    ThrowChosenByVerification(options.pairing);
-  }
   const std::vector<ImagePair> pairs = generator->AllPairs();
   const std::string warning = generator->Warning();
   if (!warning.empty()) LOG(WARNING) << warning;

@@ -83,4 +83,8 @@ bool PairGeneratorRegistry::IsBenchmarkMethod(const std::string& name) const {
   return Find(name).benchmark_method;
 }
 
+bool PairGeneratorRegistry::UsesVerification(const std::string& name) const {
+  return Find(name).uses_verification;
+}
+
 }  // namespace colmap_gcn

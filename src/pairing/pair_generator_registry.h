@@ -70,6 +70,9 @@ class PairGeneratorRegistry {
   // Whether gcn_benchmark offers `name` as a method.
   bool IsBenchmarkMethod(const std::string& name) const;
 
+  // Whether `name` chooses its pairs from verifications, round by round.
+  bool UsesVerification(const std::string& name) const;
+
  private:
   struct Entry {
     std::string name;
@@ -81,6 +84,7 @@ class PairGeneratorRegistry {
         create;
     std::function<int*(std::any*)> depth;
     bool benchmark_method = true;
+    bool uses_verification = false;
   };
 
   const Entry& Find(const std::string& name) const;
@@ -130,6 +134,7 @@ void PairGeneratorRegistry::Register(PairGeneratorSpec<Options> spec) {
     };
   }
   entry.benchmark_method = spec.benchmark_method;
+  entry.uses_verification = spec.uses_verification;
   entries_.push_back(std::move(entry));
 }
 

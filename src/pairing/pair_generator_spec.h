@@ -40,6 +40,8 @@ struct PairGeneratorContext {
 //               method takes no k);
 //   benchmark_method  whether gcn_benchmark offers it as a --methods entry
 //               (false for generators that need a user's file).
+//   uses_verification  whether its pairs exist only round by round after
+//               matching (adaptive, graphmatch): nothing to export up front.
 template <typename Options>
 struct PairGeneratorSpec {
   std::string name;
@@ -50,6 +52,7 @@ struct PairGeneratorSpec {
       create;
   std::function<int*(Options* options)> depth;
   bool benchmark_method = true;
+  bool uses_verification = false;
 };
 
 }  // namespace colmap_gcn

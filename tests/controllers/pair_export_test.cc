@@ -75,15 +75,18 @@ TEST_F(PairExport, ColmapLayoutHoldsTheSamePairs) {
 }
 
 TEST_F(PairExport, RefusesGeneratorsThatNeedVerification) {
-  GcnMatchingOptions options;
-  options.pairing = "adaptive";
-  PairExportOptions export_options;
-  export_options.output_path = JoinPaths(dir_.Path(), "pairs.txt");
-  test::ExpectErrorContaining(
-      [&] { ExportPairs(database_path_, options, export_options); },
-      "--GcnMatching.pairing adaptive chooses pairs from COLMAP's "
-      "verification");
-  EXPECT_FALSE(ExistsFile(export_options.output_path));
+  for (const std::string pairing :
+       {"adaptive", "adaptive_recall", "graphmatch"}) {
+    GcnMatchingOptions options;
+    options.pairing = pairing;
+    PairExportOptions export_options;
+    export_options.output_path = JoinPaths(dir_.Path(), "pairs.txt");
+    test::ExpectErrorContaining(
+        [&] { ExportPairs(database_path_, options, export_options); },
+        "--GcnMatching.pairing " + pairing +
+            " chooses pairs from COLMAP's verification");
+    EXPECT_FALSE(ExistsFile(export_options.output_path));
+  }
 }
 
 TEST(WriteHlocPairsFile, RejectsUnknownIdsAndNamesWithSpaces) {
