@@ -200,6 +200,9 @@ TEST_F(DefaultModelEndToEnd, GcnReconstructorFromImages) {
       << output;
   const std::string database_path = JoinPaths(workspace_path, "database.db");
   const std::string sparse_path = JoinPaths(workspace_path, "sparse");
+  // The workspace's database is one file again: no SQLite side files left.
+  EXPECT_FALSE(ExistsFile(database_path + "-wal"));
+  EXPECT_FALSE(ExistsFile(database_path + "-shm"));
   const std::vector<DatabaseImage> images =
       Database(database_path).ReadAllImages();
   ASSERT_EQ(images.size(), kNumImages);
