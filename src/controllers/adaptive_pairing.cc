@@ -121,7 +121,21 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
   PrepareNext();
   prepared_ = false;
   std::vector<ImagePair> block;
-  if (next_.empty()) return block;
+  if (next_.empty()) {
+    if (progress_) progress_->Finish();
+    return block;
+  }
+  if (!progress_) {
+    // kEnough counts toward a known total (every image with its strong
+    // partners); kRecall's end is not known in advance.
+    const bool enough = options_.stop_rule == AdaptiveStopRule::kEnough;
+    progress_ = std::make_unique<ProgressLogger>(
+        enough ? image_ids_.size() : 0,
+        label_ + " rounds",
+        enough ? "images with " + std::to_string(options_.min_strong_partners) +
+                     " strong partners"
+               : "pairs attempted");
+  }
   const bool connectivity = next_connectivity_;
   for (const int c : next_) {
     Candidate& candidate = candidates_[c];
@@ -235,6 +249,11 @@ void AdaptivePairGenerator::Observe(
   for (const int c : yielded_) round.total_strong += IsStrong(candidates_[c]);
   Connectivity(&round.num_connected, &round.num_components);
   LogRound(round);
+  if (progress_) {
+    progress_->Update(options_.stop_rule == AdaptiveStopRule::kEnough
+                          ? round.num_connected
+                          : round.total_attempted);
+  }
 }
 
 void AdaptivePairGenerator::LogRound(const AdaptiveRound& round) const {

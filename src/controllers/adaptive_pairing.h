@@ -12,6 +12,7 @@
 #include "pairing/knn_pairing.h"
 #include "pairing/pair_generator_spec.h"
 #include "pairing/pairing.h"
+#include "util/logging.h"
 #include "util/timer.h"
 #include "util/types.h"
 
@@ -237,6 +238,7 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<size_t> best_inliers_;  // best verified pair per row
   PairRejection rejected_;
   Timer round_timer_;
+  std::unique_ptr<ProgressLogger> progress_;  // from the first round
   mutable bool prepared_ = false;
   mutable std::vector<int> next_;
   mutable double next_yield_ = -1;

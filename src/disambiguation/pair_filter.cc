@@ -255,6 +255,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
   }
 
   std::vector<ViewGraphEdge> edges(pairs.size());
+  ProgressLogger progress(pairs.size(), "look-alike filter", "pairs");
   ParallelFor(
       0, static_cast<int>(pairs.size()), options.num_threads, [&](int p) {
         const VerifiedTwoViewGeometry& pair = pairs[p];
@@ -278,7 +279,9 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                                 trusted_focal.at(images[edge.image2].camera_id),
                             options.max_rays_per_pair,
                             &edge.rotation);
+        progress.Increment();
       });
+  progress.Finish();
   const std::vector<LookalikeDecision> decisions = DecideLookalikePairs(
       static_cast<int>(images.size()), edges, options.decision);
   for (size_t p = 0; p < pairs.size(); ++p) {

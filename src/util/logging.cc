@@ -123,7 +123,9 @@ double SteadySeconds() {
 std::string FormatRate(const double rate, const std::string& unit) {
   char buffer[48];
   std::snprintf(buffer, sizeof(buffer), rate < 10.0 ? "%.1f" : "%.0f", rate);
-  return std::string(buffer) + (unit.empty() ? "/s" : " " + unit + "/s");
+  // A described unit ("images with 3 strong partners") rates by its noun.
+  const std::string noun = unit.substr(0, unit.find(' '));
+  return std::string(buffer) + (noun.empty() ? "/s" : " " + noun + "/s");
 }
 
 std::string Count(const size_t done,

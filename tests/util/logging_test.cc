@@ -78,6 +78,11 @@ TEST_F(Logging, ProgressLineFormat) {
   // Unknown total: count and rate only.
   EXPECT_EQ(ProgressLogger::FormatLine("registering", "images", 6, 0, 3.0),
             "registering: 6 images, 2.0 images/s");
+  // A described unit rates by its noun.
+  EXPECT_EQ(ProgressLogger::FormatLine(
+                "adaptive rounds", "images with 3 strong partners", 6, 10, 2.0),
+            "adaptive rounds: 6/10 images with 3 strong partners (60 %), 3.0 "
+            "images/s, ETA 1.3 s");
   EXPECT_EQ(
       ProgressLogger::FormatFinalLine("embedding", "images", 24, 24, 7.74),
       "embedding: 24/24 images in 7.7 s (3.1 images/s)");
