@@ -24,6 +24,7 @@
 #include "evaluation/pair_labels.h"
 #include "evaluation/pose_pair_filter.h"
 #include "evaluation/report.h"
+#include "evaluation/view_graph_figure.h"
 #include "pairing/imported_pairing.h"
 #include "pairing/pairs_io.h"
 #include "scene/database_copy.h"
@@ -210,32 +211,24 @@ Json BenchmarkRunner::MatchMethod(const SceneContext& scene,
   return run;
 }
 
-void BenchmarkRunner::CountLookalikeRemovals(const std::string& db,
-                                             const SceneContext& scene,
-                                             MethodResult* result) const {
-  const TwoViewGeometryStore database(db);
-  for (const HiddenTwoViewGeometry& hidden : database.ReadHiddenPairs()) {
-    if (!IsVerifiedTwoViewGeometry(
-            2,
-            hidden.num_inliers,
-            options_.gcn_matching.matching.min_num_inliers)) {
-      continue;
-    }
-    ++result->num_lookalike_removed;
-    const ImagePair pair = PairIdToImagePair(hidden.pair_id);
-    const auto a = scene.names_by_id.find(pair.first);
-    const auto b = scene.names_by_id.find(pair.second);
-    if (a == scene.names_by_id.end() || b == scene.names_by_id.end() ||
-        !scene.labels.IsLabelled(a->second, b->second)) {
-      continue;
-    }
-    if (scene.labels.SharesNothing(a->second, b->second)) {
+std::vector<ImageNamePair> BenchmarkRunner::CountLookalikeRemovals(
+    const std::string& db,
+    const SceneContext& scene,
+    MethodResult* result) const {
+  const std::vector<ImageNamePair> hidden =
+      ReadHiddenImagePairs(db, options_.gcn_matching.matching.min_num_inliers);
+  result->num_lookalike_removed = hidden.size();
+  for (const auto& [name1, name2] : hidden) {
+    if (!scene.labels.IsLabelled(name1, name2)) continue;
+    if (scene.labels.SharesNothing(name1, name2)) {
       ++result->num_lookalike_removed_wrong;
     }
-    if (scene.labels.IsMatchable(a->second, b->second, options_.labels)) {
+    if (scene.labels.IsMatchable(name1, name2, options_.labels)) {
       ++result->num_lookalike_removed_matchable;
     }
   }
+  RemoveEmptySqliteSideFiles(db);
+  return hidden;
 }
 
 Json BenchmarkRunner::MapMethod(const SceneContext& scene,
@@ -324,7 +317,8 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
       }
     }
   }
-  CountLookalikeRemovals(JoinPaths(dir, "database.db"), scene, &result);
+  const std::vector<ImageNamePair> hidden =
+      CountLookalikeRemovals(JoinPaths(dir, "database.db"), scene, &result);
   result.sfm = EvaluateSparseModels(JoinPaths(dir, "sparse"),
                                     scene.images.size(),
                                     scene.has_gt ? &scene.gt : nullptr,
@@ -344,6 +338,7 @@ MethodResult BenchmarkRunner::EvaluateMethod(const SceneContext& scene,
                       scene.image_names,
                       attempted,
                       verified,
+                      hidden,
                       scene.labels,
                       options_.labels);
   scene_result->figures.push_back("figures/" + scene.dataset.name + "/" +

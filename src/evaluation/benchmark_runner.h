@@ -82,10 +82,11 @@ class BenchmarkRunner {
   // the exhaustive matches can serve the labels first.
   Json MatchMethod(const SceneContext& scene, const BenchmarkMethod& method);
   Json MapMethod(const SceneContext& scene, const BenchmarkMethod& method);
-  // The pairs the look-alike filter hid in a method's database, by label.
-  void CountLookalikeRemovals(const std::string& db,
-                              const SceneContext& scene,
-                              MethodResult* result) const;
+  // The pairs the look-alike filter hid in a method's database, counted by
+  // label; returns them.
+  std::vector<ImageNamePair> CountLookalikeRemovals(const std::string& db,
+                                                    const SceneContext& scene,
+                                                    MethodResult* result) const;
   MethodResult EvaluateMethod(const SceneContext& scene,
                               const BenchmarkMethod& method,
                               const Json& run,

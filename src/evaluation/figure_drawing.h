@@ -19,6 +19,8 @@ const cv::Scalar kLightRed(150, 150, 245);
 const cv::Scalar kLightGrey(215, 215, 215);
 const cv::Scalar kDarkGrey(90, 90, 90);
 const cv::Scalar kBlue(180, 100, 30);
+// Pairs the look-alike filter hid from the mapper.
+const cv::Scalar kPurple(160, 50, 150);
 
 // Writes a PNG; throws Error naming the path if it cannot.
 void WritePng(const std::string& path, const cv::Mat& image);

@@ -26,6 +26,7 @@ void WriteViewGraphImage(const std::string& path,
                          const std::vector<std::string>& image_names,
                          const std::vector<ImageNamePair>& attempted,
                          const std::vector<ImageNamePair>& verified,
+                         const std::vector<ImageNamePair>& hidden,
                          const PairLabels& labels,
                          const PairLabelOptions& label_options,
                          const std::string& title) {
@@ -42,7 +43,9 @@ void WriteViewGraphImage(const std::string& path,
   }
   std::set<ImageNamePair> verified_set;
   for (const auto& pair : verified) verified_set.insert(Ordered(pair));
-  size_t num_attempted = 0, num_verified = 0;
+  std::set<ImageNamePair> hidden_set;
+  for (const auto& pair : hidden) hidden_set.insert(Ordered(pair));
+  size_t num_attempted = 0, num_verified = 0, num_hidden = 0;
   for (const auto& pair : attempted) {
     const ImageNamePair ordered = Ordered(pair);
     const auto a = index.find(ordered.first);
@@ -54,7 +57,10 @@ void WriteViewGraphImage(const std::string& path,
     const int row = std::min(a->second, b->second);
     const int col = std::max(a->second, b->second);
     cv::Scalar colour = kLightGrey;
-    if (verified_set.count(ordered) > 0) {
+    if (hidden_set.count(ordered) > 0) {
+      ++num_hidden;
+      colour = kPurple;
+    } else if (verified_set.count(ordered) > 0) {
       ++num_verified;
       if (labels.SharesNothing(ordered.first, ordered.second)) {
         colour = kRed;
@@ -79,7 +85,11 @@ void WriteViewGraphImage(const std::string& path,
   Text(&image,
        std::to_string(n) + " images; above the diagonal: the " +
            std::to_string(num_attempted) + " pairs matched (" +
-           std::to_string(num_verified) + " verified)",
+           std::to_string(num_verified) + " verified" +
+           (num_hidden > 0
+                ? ", " + std::to_string(num_hidden) + " hidden as look-alikes"
+                : std::string()) +
+           ")",
        cv::Point(20, 55),
        0.45,
        kDarkGrey);
@@ -101,6 +111,7 @@ void WriteViewGraphImage(const std::string& path,
               {kOlive, "verified, below the label thresholds"},
               {kRed, "verified, images share nothing (wrong)"},
               {kLightGrey, "matched, rejected by verification"},
+              {kPurple, "verified, hidden as a look-alike"},
               {kDarkGrey, "matchable by the ground truth"},
               {kWhite, "not matched / not matchable"}});
   WritePng(path, image);

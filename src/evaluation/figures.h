@@ -12,7 +12,8 @@ namespace colmap_gcn {
 // order), like the paper's Fig. 5. Upper triangle: the method's pairs --
 // verified and matchable green, verified but below the label thresholds
 // olive, verified although the images share nothing (wrong) red, attempted
-// but not verified light grey. Lower triangle: the labels -- matchable
+// but not verified light grey, verified but hidden from the mapper by the
+// look-alike filter purple. Lower triangle: the labels -- matchable
 // pairs dark grey, so missed pairs stand out against the upper triangle.
 // With a title, counts, labelled axes and a legend of every colour. Written
 // as PNG; throws Error if it cannot be written.
@@ -20,6 +21,7 @@ void WriteViewGraphImage(const std::string& path,
                          const std::vector<std::string>& image_names,
                          const std::vector<ImageNamePair>& attempted,
                          const std::vector<ImageNamePair>& verified,
+                         const std::vector<ImageNamePair>& hidden,
                          const PairLabels& labels,
                          const PairLabelOptions& label_options,
                          const std::string& title = "");

@@ -6,7 +6,6 @@
 #include "evaluation/html_report.h"
 #include "evaluation/view_graph_figure.h"
 #include "pairing/pairs_io.h"
-#include "scene/database_copy.h"
 #include "scene/reconstruction.h"
 #include "scene/reconstruction_stats.h"
 #include "util/file.h"
@@ -180,16 +179,9 @@ std::string ReconstructionReportBody(const HtmlReportOptions& options) {
   const Json run =
       ExistsFile(run_path) ? ReadJsonFile(run_path) : Json::object();
 
-  MatchedViewGraph graph;
-  {
-    const Database database(JoinPaths(workspace, "database.db"));
-    graph.image_names = ReadImageNamesSorted(database);
-    graph.verified = ReadVerifiedImagePairs(database, options.min_num_inliers);
-  }
-  // A reader of a WAL database leaves an empty "-wal" and "-shm" beside it.
-  RemoveEmptySqliteSideFiles(JoinPaths(workspace, "database.db"));
   const std::string pairs_path = PairsPath(workspace, run);
-  if (!pairs_path.empty()) graph.attempted = ReadPairsFile(pairs_path);
+  MatchedViewGraph graph = ReadMatchedViewGraph(
+      JoinPaths(workspace, "database.db"), pairs_path, options.min_num_inliers);
   std::vector<ModelRow> models;
   for (const std::string& path :
        ListSparseModels(JoinPaths(workspace, "sparse"))) {

@@ -8,6 +8,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "evaluation/figure_drawing.h"
+#include "scene/database_copy.h"
+#include "scene/two_view_geometry_store.h"
+#include "util/file.h"
 
 namespace colmap_gcn {
 namespace {
@@ -48,6 +51,7 @@ constexpr int kLayoutLeft = 680;
 void DrawLayout(cv::Mat* image,
                 const MatchedViewGraph& graph,
                 const std::vector<std::pair<size_t, size_t>>& verified,
+                const std::vector<std::pair<size_t, size_t>>& hidden,
                 const std::vector<std::pair<size_t, size_t>>& rejected) {
   const size_t n = graph.image_names.size();
   const std::vector<std::pair<double, double>> positions =
@@ -65,6 +69,9 @@ void DrawLayout(cv::Mat* image,
   };
   for (const auto& [a, b] : rejected) {
     figure::DrawLine(image, point(a), point(b), figure::kLightRed, 1, true);
+  }
+  for (const auto& [a, b] : hidden) {
+    figure::DrawLine(image, point(a), point(b), figure::kPurple, 1, true);
   }
   for (const auto& [a, b] : verified) {
     figure::DrawLine(image, point(a), point(b), figure::kGreen, 2, false);
@@ -159,11 +166,17 @@ void WriteMatchedViewGraphImage(const std::string& path,
   for (size_t i = 0; i < n; ++i) index[graph.image_names[i]] = i;
   const auto attempted = IndexPairs(graph.attempted, index);
   const auto verified = IndexPairs(graph.verified, index);
-  std::vector<std::pair<size_t, size_t>> rejected;
+  const auto hidden = IndexPairs(graph.hidden, index);
+  std::vector<std::pair<size_t, size_t>> kept, rejected;
+  std::set_union(verified.begin(),
+                 verified.end(),
+                 hidden.begin(),
+                 hidden.end(),
+                 std::back_inserter(kept));
   std::set_difference(attempted.begin(),
                       attempted.end(),
-                      verified.begin(),
-                      verified.end(),
+                      kept.begin(),
+                      kept.end(),
                       std::back_inserter(rejected));
 
   cv::Mat image(760, kWidth, CV_8UC3, figure::kWhite);
@@ -172,7 +185,10 @@ void WriteMatchedViewGraphImage(const std::string& path,
       std::to_string(n) + " images, " + std::to_string(n * (n - 1) / 2) +
       " possible pairs; " + std::to_string(attempted.size()) +
       " pairs matched, " + std::to_string(verified.size()) + " verified, " +
-      std::to_string(rejected.size()) + " rejected";
+      std::to_string(rejected.size()) + " rejected" +
+      (hidden.empty()
+           ? std::string()
+           : ", " + std::to_string(hidden.size()) + " hidden as look-alikes");
   figure::Text(&image, counts, cv::Point(20, 58), 0.5, figure::kDarkGrey);
   figure::Text(
       &image, "Which pairs were matched", cv::Point(kMatrixLeft, 88), 0.5);
@@ -190,13 +206,17 @@ void WriteMatchedViewGraphImage(const std::string& path,
     cells.emplace_back(a, b, figure::kGreen);
     cells.emplace_back(b, a, figure::kGreen);
   }
+  for (const auto& [a, b] : hidden) {
+    cells.emplace_back(a, b, figure::kPurple);
+    cells.emplace_back(b, a, figure::kPurple);
+  }
   figure::DrawMatrix(&image,
                      cv::Rect(kMatrixLeft, kPanelTop, kPanel, kPanel),
                      static_cast<int>(n),
                      cells,
                      "image number (name order)",
                      "image number (name order)");
-  DrawLayout(&image, graph, verified, rejected);
+  DrawLayout(&image, graph, verified, hidden, rejected);
 
   std::vector<LegendEntry> legend = {
       {figure::kGreen, "verified pair (two-view geometry confirmed)"},
@@ -204,6 +224,12 @@ void WriteMatchedViewGraphImage(const std::string& path,
       {figure::kWhite, "not matched (skipped)"},
       {figure::kGreen, "verified pair", Key::kLine},
       {figure::kLightRed, "rejected pair", Key::kDashedLine}};
+  if (!hidden.empty()) {
+    legend.insert(
+        legend.begin() + 2,
+        {figure::kPurple, "verified, hidden from the mapper as a look-alike"});
+    legend.push_back({figure::kPurple, "look-alike pair", Key::kDashedLine});
+  }
   if (graph.registration_known) {
     legend.push_back({figure::kBlue, "registered image", Key::kDot});
     legend.push_back({figure::kRed, "image not registered", Key::kRing});
@@ -236,6 +262,47 @@ std::vector<ImageNamePair> ReadVerifiedImagePairs(
     verified.push_back(Ordered({a->second, b->second}));
   }
   return verified;
+}
+
+MatchedViewGraph ReadMatchedViewGraph(const std::string& database_path,
+                                      const std::string& pairs_path,
+                                      const size_t min_num_inliers) {
+  MatchedViewGraph graph;
+  {
+    const Database database(database_path);
+    graph.image_names = ReadImageNamesSorted(database);
+    graph.verified = ReadVerifiedImagePairs(database, min_num_inliers);
+  }
+  graph.hidden = ReadHiddenImagePairs(database_path, min_num_inliers);
+  // A reader of a WAL database leaves an empty "-wal" and "-shm" beside it.
+  RemoveEmptySqliteSideFiles(database_path);
+  if (!pairs_path.empty() && ExistsFile(pairs_path)) {
+    graph.attempted = ReadPairsFile(pairs_path);
+  }
+  return graph;
+}
+
+std::vector<ImageNamePair> ReadHiddenImagePairs(
+    const std::string& database_path, const size_t min_num_inliers) {
+  const TwoViewGeometryStore database(database_path);
+  std::map<image_t, std::string> names;
+  for (const DatabaseImage& image : database.ReadAllImages()) {
+    names[image.image_id] = image.name;
+  }
+  std::vector<ImageNamePair> hidden;
+  for (const HiddenTwoViewGeometry& pair : database.ReadHiddenPairs()) {
+    // The side table keeps inlier counts, not configurations: a hidden pair
+    // was verified, so only its count is checked.
+    if (!IsVerifiedTwoViewGeometry(2, pair.num_inliers, min_num_inliers)) {
+      continue;
+    }
+    const ImagePair ids = PairIdToImagePair(pair.pair_id);
+    const auto a = names.find(ids.first);
+    const auto b = names.find(ids.second);
+    if (a == names.end() || b == names.end()) continue;
+    hidden.push_back(Ordered({a->second, b->second}));
+  }
+  return hidden;
 }
 
 std::vector<std::string> ReadImageNamesSorted(const Database& database) {

@@ -6,7 +6,6 @@
 #include "evaluation/view_graph_figure.h"
 #include "pairing/pairs_io.h"
 #include "scene/database.h"
-#include "scene/database_copy.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/logging.h"
@@ -65,15 +64,8 @@ std::string WriteGcnMatchingFigure(const std::string& database_path,
   const std::string pairs_path = options.matching.pairs_path.empty()
                                      ? database_path + ".pairs.txt"
                                      : options.matching.pairs_path;
-  MatchedViewGraph graph;
-  {
-    const Database database(database_path);
-    graph.image_names = ReadImageNamesSorted(database);
-    graph.verified =
-        ReadVerifiedImagePairs(database, options.matching.min_num_inliers);
-  }
-  RemoveEmptySqliteSideFiles(database_path);
-  if (ExistsFile(pairs_path)) graph.attempted = ReadPairsFile(pairs_path);
+  MatchedViewGraph graph = ReadMatchedViewGraph(
+      database_path, pairs_path, options.matching.min_num_inliers);
   graph.title = "View graph of " + options.pairing + " pairing";
   const std::string path = ViewGraphFigurePath(database_path, options);
   WriteMatchedViewGraphImage(path, graph);

@@ -71,6 +71,25 @@ TEST(MatchedViewGraph, ShowsVerifiedRejectedAndUnregisteredImages) {
   EXPECT_GT(CountColour(image, figure::kGreen), 2 * 130 * 130);
   EXPECT_GT(CountColour(image, figure::kRed), 2 * 120 * 120);
   EXPECT_GT(CountColour(image, figure::kBlue), 0);  // registered images
+  // No look-alike hidden: no purple, not even in the legend.
+  EXPECT_EQ(CountColour(image, figure::kPurple), 0);
+}
+
+TEST(MatchedViewGraph, ShowsLookalikesInTheirOwnColour) {
+  TemporaryDirectory dir;
+  MatchedViewGraph graph;
+  graph.title = "test";
+  graph.image_names = {"a", "b", "c", "d"};
+  graph.attempted = {{"a", "b"}, {"b", "c"}, {"c", "d"}};
+  graph.verified = {{"a", "b"}, {"b", "c"}};
+  graph.hidden = {{"d", "c"}};
+  const std::string path = JoinPaths(dir.Path(), "graph.png");
+  WriteMatchedViewGraphImage(path, graph);
+  const cv::Mat image = cv::imread(path);
+  ASSERT_FALSE(image.empty());
+  // The hidden pair's two cells are purple, not red: nothing was rejected.
+  EXPECT_GT(CountColour(image, figure::kPurple), 2 * 120 * 120);
+  EXPECT_LT(CountColour(image, figure::kRed), 120 * 120);
 }
 
 TEST(ViewGraphImage, HasTheLegendOfEveryColour) {
@@ -78,16 +97,18 @@ TEST(ViewGraphImage, HasTheLegendOfEveryColour) {
   const std::string path = JoinPaths(dir.Path(), "graph.png");
   WriteViewGraphImage(path,
                       {"a", "b", "c"},
-                      {{"a", "b"}},
+                      {{"a", "b"}, {"b", "c"}},
                       {},
+                      {{"c", "b"}},
                       PairLabels(),
                       PairLabelOptions(),
                       "scene / method");
   const cv::Mat image = cv::imread(path);
   ASSERT_FALSE(image.empty());
-  // The rejected pair's cell and its legend key are light grey; the olive
-  // key is drawn although no cell is olive.
+  // The rejected pair's cell and its legend key are light grey, the hidden
+  // look-alike's purple; the olive key is drawn although no cell is olive.
   EXPECT_GT(CountColour(image, figure::kLightGrey), 180 * 180);
+  EXPECT_GT(CountColour(image, figure::kPurple), 180 * 180);
   EXPECT_GT(CountColour(image, figure::kOlive), 100);
 }
 
