@@ -24,9 +24,10 @@ struct PairMatchingOptions {
   // pairs file's third column, which COLMAP ignores.
   std::vector<float> scores;
 
-  // Pairs per COLMAP run. Each run commits its matches, so an interrupted
-  // matching resumes having lost at most one block; COLMAP 3.8 batches its
-  // own database writes in blocks of 1225 pairs.
+  // Most pairs per COLMAP run. Each run commits its matches, so an
+  // interrupted matching resumes having lost at most one block; COLMAP 3.8
+  // batches its own database writes in blocks of 1225 pairs. Runs are
+  // smaller (ProgressBlockSize) so that progress shows every 10 %.
   int block_size = 1225;
 
   // Forwarded verbatim to `colmap matches_importer` (the user's other
@@ -60,6 +61,10 @@ struct PairMatchingSummary {
                : static_cast<double>(num_verified_pairs) / num_attempted_pairs;
   }
 };
+
+// Pairs per matches_importer run for num_pairs pairs: a tenth of them, at
+// least 100, at most max_block_size.
+size_t ProgressBlockSize(size_t num_pairs, int max_block_size);
 
 // Matches and verifies the pairs with COLMAP's own matcher
 // (`matches_importer --match_type pairs`), in blocks of

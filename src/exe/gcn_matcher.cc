@@ -24,7 +24,8 @@ void AddGcnMatchingOptions(OptionManager* manager,
   manager->AddDefaultOption(
       "GcnMatching.block_size",
       &matching.block_size,
-      "pairs per COLMAP matching run (each commits; resume granularity)");
+      "most pairs per COLMAP matching run (each commits; resume "
+      "granularity); runs are a tenth of the pairs, at least 100");
   manager->AddDefaultOption("GcnMatching.pairs_path",
                             &matching.pairs_path,
                             "where the chosen pairs are written");

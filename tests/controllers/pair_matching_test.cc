@@ -67,5 +67,15 @@ TEST(MatchImagePairs, ColmapReportingAFullDiskIsAnErrorNamingIt) {
   EXPECT_EQ(ReadTextFile(database_path), before);
 }
 
+TEST(MatchImagePairs, BlocksAreATenthOfThePairsForProgress) {
+  // At least 100 pairs per COLMAP run, at most the block size.
+  EXPECT_EQ(ProgressBlockSize(50, 1225), 100u);
+  EXPECT_EQ(ProgressBlockSize(877, 1225), 100u);
+  EXPECT_EQ(ProgressBlockSize(3160, 1225), 316u);
+  EXPECT_EQ(ProgressBlockSize(100000, 1225), 1225u);
+  // A block size the user chose below 100 wins.
+  EXPECT_EQ(ProgressBlockSize(877, 10), 10u);
+}
+
 }  // namespace
 }  // namespace colmap_gcn
