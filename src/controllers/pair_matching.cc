@@ -116,10 +116,6 @@ GeometryMap RunMatchesImporter(const ColmapRunner& colmap,
     const auto begin = pairs.begin() + block * block_size;
     const auto end =
         pairs.begin() + std::min(pairs.size(), (block + 1) * block_size);
-    if (num_blocks > 1) {
-      LOG(INFO) << "matching block " << block + 1 << "/" << num_blocks << " ("
-                << end - begin << " pairs)";
-    }
     const std::vector<ImagePair> block_pairs(begin, end);
     std::vector<std::string> args = {"--database_path",
                                      work_path,

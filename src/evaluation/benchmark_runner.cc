@@ -241,6 +241,7 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
         copy.method = method.spec;
         copy.k = static_cast<int>(run.value("k", int64_t{0}));
         copy.pairing_seconds = run.value("pairing_seconds", 0.0);
+        copy.prepare_seconds = run.value("prepare_seconds", 0.0);
         copy.message = "same pairs as " + owner;
         copy.same_as = owner;
         result.methods.push_back(copy);

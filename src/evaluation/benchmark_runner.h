@@ -91,8 +91,11 @@ class BenchmarkRunner {
                               const BenchmarkMethod& method,
                               const Json& run,
                               SceneResult* scene_result);
-  std::unique_ptr<PairGenerator> CreateGenerator(
-      const SceneContext& scene, const BenchmarkMethod& method) const;
+  // Runs the generator's prepare step first (PairGeneratorSpec::prepare),
+  // its time in *prepare_seconds.
+  std::unique_ptr<PairGenerator> CreateGenerator(const SceneContext& scene,
+                                                 const BenchmarkMethod& method,
+                                                 double* prepare_seconds) const;
   const ColmapRunner& Colmap(const SceneContext& scene);
 
   const BenchmarkOptions& options_;

@@ -287,6 +287,21 @@ void AddMethodRows(const SceneResult& scene,
   }
 }
 
+// What was made before pairing and is not in pairing_s (a vocabulary tree,
+// as a user downloads one).
+std::string PreparedNote(const SceneResult& scene) {
+  std::string note;
+  for (const MethodResult& method : scene.methods) {
+    if (method.prepare_seconds <= 0) continue;
+    note += (note.empty() ? "" : ", ") + MethodLabel(method) + " " +
+            Format("%.1f", method.prepare_seconds) + " s";
+  }
+  if (note.empty()) return "";
+  return "\n_Made before pairing, as a user downloads it, and not in "
+         "pairing_s: the vocabulary tree (" +
+         note + ")._\n";
+}
+
 void SceneSection(const SceneResult& scene, std::ostringstream* out) {
   *out << "## " << scene.name << "\n\n";
   if (scene.status != "ok") {
@@ -316,7 +331,7 @@ void SceneSection(const SceneResult& scene, std::ostringstream* out) {
   }
   *out << "### Matchable image retrieval (Tables 1-2)\n\n"
        << tables.retrieval.Str() << "\n### Matching (Tables 3, 5)\n\n"
-       << tables.matching.Str()
+       << tables.matching.Str() << PreparedNote(scene)
        << "\n### Mapping, largest model (Tables 4, 6)\n\n"
        << tables.mapping.Str();
   if (!tables.pose.Empty()) {

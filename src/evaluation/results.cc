@@ -67,6 +67,7 @@ Json MethodResultToJson(const MethodResult& result) {
   json["lookalike_removed_matchable"] = result.num_lookalike_removed_matchable;
   json["filter_seconds"] = result.filter_seconds;
   json["pairing_seconds"] = result.pairing_seconds;
+  json["prepare_seconds"] = result.prepare_seconds;
   json["matching_seconds"] = result.matching_seconds;
   json["mapping_seconds"] = result.mapping_seconds;
   json["session"] = result.session;

@@ -29,7 +29,10 @@ struct MethodResult {
   size_t num_lookalike_removed_wrong = 0;
   size_t num_lookalike_removed_matchable = 0;
   double filter_seconds = 0;
-  double pairing_seconds = 0;   // choosing the pairs
+  double pairing_seconds = 0;  // choosing the pairs
+  // Made once before pairing and not counted in pairing_seconds (vocab_tree:
+  // building the tree a user would download).
+  double prepare_seconds = 0;
   double matching_seconds = 0;  // COLMAP matching + verification
   double mapping_seconds = 0;
   std::string session;  // the benchmark run that matched

@@ -87,4 +87,13 @@ bool PairGeneratorRegistry::UsesVerification(const std::string& name) const {
   return Find(name).uses_verification;
 }
 
+bool PairGeneratorRegistry::Prepare(const std::string& name,
+                                    PairGeneratorOptions* options,
+                                    const PairGeneratorContext& context) const {
+  const Entry& entry = Find(name);
+  if (!entry.prepare) return false;
+  entry.prepare(&options->Any(name), context);
+  return true;
+}
+
 }  // namespace colmap_gcn

@@ -73,6 +73,12 @@ class PairGeneratorRegistry {
   // Whether `name` chooses its pairs from verifications, round by round.
   bool UsesVerification(const std::string& name) const;
 
+  // Runs `name`'s prepare step (PairGeneratorSpec::prepare) on *options;
+  // false when it has none.
+  bool Prepare(const std::string& name,
+               PairGeneratorOptions* options,
+               const PairGeneratorContext& context) const;
+
  private:
   struct Entry {
     std::string name;
@@ -85,6 +91,7 @@ class PairGeneratorRegistry {
     std::function<int*(std::any*)> depth;
     bool benchmark_method = true;
     bool uses_verification = false;
+    std::function<void(std::any*, const PairGeneratorContext&)> prepare;
   };
 
   const Entry& Find(const std::string& name) const;
@@ -131,6 +138,13 @@ void PairGeneratorRegistry::Register(PairGeneratorSpec<Options> spec) {
   if (spec.depth) {
     entry.depth = [depth = spec.depth](std::any* options) {
       return depth(std::any_cast<Options>(options));
+    };
+  }
+  if (spec.prepare) {
+    entry.prepare = [prepare = spec.prepare](
+                        std::any* options,
+                        const PairGeneratorContext& context) {
+      prepare(std::any_cast<Options>(options), context);
     };
   }
   entry.benchmark_method = spec.benchmark_method;

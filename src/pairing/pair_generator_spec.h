@@ -42,6 +42,10 @@ struct PairGeneratorContext {
 //               (false for generators that need a user's file).
 //   uses_verification  whether its pairs exist only round by round after
 //               matching (adaptive, graphmatch): nothing to export up front.
+//   prepare     the work a user does once, before pairing, and would
+//               otherwise download (vocab_tree: building the tree); it may
+//               set *options (the tree's path). gcn_benchmark runs it
+//               outside the pairing time; null: nothing to prepare.
 template <typename Options>
 struct PairGeneratorSpec {
   std::string name;
@@ -53,6 +57,8 @@ struct PairGeneratorSpec {
   std::function<int*(Options* options)> depth;
   bool benchmark_method = true;
   bool uses_verification = false;
+  std::function<void(Options* options, const PairGeneratorContext& context)>
+      prepare;
 };
 
 }  // namespace colmap_gcn

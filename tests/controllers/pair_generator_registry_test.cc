@@ -13,6 +13,7 @@
 #include "pairing/gcn_model_pairing.h"
 #include "pairing/imported_pairing.h"
 #include "pairing/knn_pairing.h"
+#include "pairing/pair_generator_registry.h"
 #include "pairing/pairing.h"
 #include "test_utils.h"
 #include "util/file.h"
@@ -245,6 +246,37 @@ TEST_F(PairGeneratorRegistryTest, VocabTreeCreatesWithColmap) {
       PairGenerators().Create("vocab_tree", options, context)->AllPairs();
   EXPECT_GE(pairs.size(), 6u);
   EXPECT_LE(pairs.size(), 12u);
+}
+
+TEST(PairGeneratorRegistry, PrepareRunsOnlyTheGeneratorsOwnStep) {
+  struct Options {
+    std::string path;
+    void Check() const {}
+  };
+  PairGeneratorRegistry registry;
+  PairGeneratorSpec<Options> with;
+  with.name = "with";
+  with.create = [](const Options&, const PairGeneratorContext&) {
+    return std::unique_ptr<PairGenerator>();
+  };
+  with.prepare = [](Options* options, const PairGeneratorContext&) {
+    options->path = "prepared";
+  };
+  PairGeneratorSpec<Options> without = with;
+  without.name = "without";
+  without.prepare = nullptr;
+  registry.Register(with);
+  registry.Register(without);
+  TemporaryDirectory dir;
+  const std::string database_path = JoinPaths(dir.Path(), "database.db");
+  test::CreateDescriptorDatabase(database_path, {});
+  const Database database(database_path);
+  const PairGeneratorContext context(database);
+  PairGeneratorOptions options = registry.DefaultOptions();
+  EXPECT_TRUE(registry.Prepare("with", &options, context));
+  EXPECT_EQ(options.Get<Options>("with").path, "prepared");
+  EXPECT_FALSE(registry.Prepare("without", &options, context));
+  EXPECT_EQ(options.Get<Options>("without").path, "");
 }
 
 }  // namespace
