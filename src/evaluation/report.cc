@@ -233,7 +233,7 @@ void AddMethodRows(const SceneResult& scene,
     if (scene.has_gt_cameras) pose->Row({label, status});
     return;
   }
-  const RetrievalMetrics& r = method.retrieval;
+  const PairSetScore& r = method.retrieval;
   retrieval->Row({label,
                   method.k > 0 ? std::to_string(method.k) : "-",
                   Count(r.num_pairs),
@@ -375,7 +375,7 @@ std::string FormatBenchmarkReport(const BenchmarkResults& results) {
                  "registered",
                  "accurate cameras"});
   for (const std::string& spec : results.methods) {
-    std::vector<RetrievalMetrics> retrieval;
+    std::vector<PairSetScore> retrieval;
     double ratio = 0, accurate = 0;
     size_t verified_wrong = 0, registered = 0, images = 0, with_pose = 0;
     size_t unavailable = 0;
@@ -401,7 +401,7 @@ std::string FormatBenchmarkReport(const BenchmarkResults& results) {
       average.Row({spec, "0", unavailable > 0 ? "unavailable" : "-"});
       continue;
     }
-    const RetrievalMetrics mean = AverageRetrievalMetrics(retrieval);
+    const PairSetScore mean = AverageRetrievalMetrics(retrieval);
     average.Row(
         {spec,
          Count(retrieval.size()),
