@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "evaluation/sfm_metrics.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
@@ -197,15 +198,8 @@ struct SceneTables {
                   "pairing (s)",
                   "matching (s)",
                   "speedup vs exhaustive"}};
-  Table mapping{{"method",
-                 "images",
-                 "registered",
-                 "models",
-                 "points",
-                 "observations",
-                 "track length",
-                 "reproj. error (px)",
-                 "mapping (s)"}};
+  Table mapping{
+      SfmMetricColumns({"method"}, {"reproj. error (px)", "mapping (s)"})};
   Table pose{{"method",
               "aligned",
               "median rot. (deg)",
