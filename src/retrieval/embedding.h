@@ -20,7 +20,8 @@ class OptionManager;
   EMBEDDING(kVlad, "vlad", VladEmbeddingSpec)              \
   EMBEDDING(kOnnx, "onnx", OnnxEmbeddingSpec)              \
   EMBEDDING(kVladOnnx, "vlad+onnx", VladOnnxEmbeddingSpec) \
-  EMBEDDING(kImported, "imported", ImportedEmbeddingSpec)
+  EMBEDDING(kImported, "imported", ImportedEmbeddingSpec)  \
+  /* the end of the list: a new embedding adds one line above */
 
 // The global embedding of an image: what the kNN graph, the GCN and the
 // adaptive generators compare images by. kDefault is no embedding but the

@@ -211,8 +211,8 @@ std::vector<DatabaseImage> Database::ReadImagesWhere(
 }
 
 std::vector<DatabaseCamera> Database::ReadAllCameras() const {
-  SqliteStatement stmt(Handle(),
-                       Path(),
+  SqliteStatement stmt(db_,
+                       path_,
                        "SELECT camera_id, model, width, height, params, "
                        "prior_focal_length FROM cameras ORDER BY camera_id");
   std::vector<DatabaseCamera> cameras;
@@ -226,7 +226,7 @@ std::vector<DatabaseCamera> Database::ReadAllCameras() const {
     const void* data = stmt.Blob(4, &num_bytes);
     if (num_bytes % sizeof(double) != 0) {
       ThrowError("database ",
-                 Path(),
+                 path_,
                  ": params blob of camera ",
                  camera.camera_id,
                  " has ",
