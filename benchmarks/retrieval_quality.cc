@@ -110,7 +110,7 @@ void RunScene(const ColmapRunner& colmap,
           ScoreTopKRetrieval(graph, names, k, labels, label_options);
       KnnOptions top_k = knn_options;
       top_k.k = k;
-      const RetrievalMetrics pair_metrics = ComputeRetrievalMetrics(
+      const PairSetScore pair_metrics = ComputeRetrievalMetrics(
           ToNames(
               KnnGraphToPairs(ComputeExactKnn(embeddings, top_k), image_ids),
               database),
@@ -138,7 +138,7 @@ void RunScene(const ColmapRunner& colmap,
     VocabTreePairingOptions options;
     options.k = k;
     VocabTreePairGenerator generator(options, database, colmap);
-    const RetrievalMetrics metrics = ComputeRetrievalMetrics(
+    const PairSetScore metrics = ComputeRetrievalMetrics(
         ToNames(generator.AllPairs(), database), labels, label_options);
     std::printf("%-28s %4d %8s %8s %8s | %6zu %6.3f %6.3f\n",
                 "vocab_tree (self-built)",

@@ -5,7 +5,8 @@
 # pair selection of gcn_matcher and the mapper on it with our `colmap` front
 # end. Ends with the pairs chosen next to exhaustive matching's count, the
 # time saved, the registered images and the HTML report. Everything goes
-# under ./demo.
+# under ./demo. The run itself is scripts/installed_demo.sh, the demo an
+# installed colmap-gcn ships.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
@@ -15,20 +16,10 @@ bash scripts/build.sh >/dev/null
 export PATH="$PWD/build/bin:$PATH"
 
 scene=demo/scene80
+DEMO_SCENE="$scene" \
+  DEMO_SYNTH_ARGS="--GcnSynth.num_images 80 --GcnSynth.width 400 --GcnSynth.height 300" \
+  bash scripts/installed_demo.sh demo "$@"
 work=demo/workspace
-rm -rf "$work"
-if [ ! -d "$scene/images" ]; then
-  colmap gcn_synth --output_path "$scene" --GcnSynth.family ordinary \
-    --GcnSynth.num_images 80 --GcnSynth.width 400 --GcnSynth.height 300 \
-    --GcnSynth.seed 1
-fi
-# The rendered images carry no EXIF: pass the known pinhole intrinsics, as
-# for a calibrated camera (cameras.txt: ID MODEL WIDTH HEIGHT fx fy cx cy).
-params=$(awk '!/^#/ && NF >= 8 {print $5","$6","$7","$8; exit}' "$scene/gt/cameras.txt")
-colmap gcn_reconstructor --image_path "$scene/images" --workspace_path "$work" \
-  --ImageReader.single_camera 1 --ImageReader.camera_model PINHOLE \
-  --ImageReader.camera_params "$params" \
-  --SiftExtraction.max_num_features 2048 --Mapper.num_threads 1 "$@"
 # The scene's ground truth: pairs whose images each see >= 30 % of what
 # they share with the other (pair_overlap.csv: overlap12, overlap21), as
 # gcn_synth counts them.

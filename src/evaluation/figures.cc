@@ -169,21 +169,7 @@ class LineChart {
   }
 
   void Line(cv::Point a, cv::Point b, const cv::Scalar& colour, bool dashed) {
-    if (!dashed) {
-      cv::line(image_, a, b, colour, 2, cv::LINE_AA);
-      return;
-    }
-    const double length = std::hypot(b.x - a.x, b.y - a.y);
-    const int steps = std::max(1, static_cast<int>(length / 6));
-    for (int s = 0; s < steps; s += 2) {
-      const double t0 = static_cast<double>(s) / steps;
-      const double t1 = std::min(1.0, static_cast<double>(s + 1) / steps);
-      cv::line(image_,
-               cv::Point(a.x + (b.x - a.x) * t0, a.y + (b.y - a.y) * t0),
-               cv::Point(a.x + (b.x - a.x) * t1, a.y + (b.y - a.y) * t1),
-               colour,
-               2);
-    }
+    DrawLine(&image_, a, b, colour, 2, dashed);
   }
 
   // A polyline with markers (filled for solid lines, open for dashed).

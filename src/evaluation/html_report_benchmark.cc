@@ -3,6 +3,7 @@
 #include <map>
 
 #include "evaluation/html_report.h"
+#include "evaluation/sfm_metrics.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
@@ -212,18 +213,11 @@ std::string BenchmarkReportBody(const std::string& output_path,
                                "matching s",
                                "status"},
                               matching);
-  body += "<h2>Mapping (Tables 4, 6)</h2>\n" +
-          html::SortableTable({"scene",
-                               "method",
-                               "images",
-                               "registered",
-                               "models",
-                               "points",
-                               "observations",
-                               "track length",
-                               "reprojection px",
-                               "mapping s"},
-                              mapping);
+  body +=
+      "<h2>Mapping (Tables 4, 6)</h2>\n" +
+      html::SortableTable(SfmMetricColumns({"scene", "method"},
+                                           {"reprojection px", "mapping s"}),
+                          mapping);
   if (!accuracy.empty()) {
     body += "<h2>Camera accuracy against ground truth</h2>\n" +
             html::SortableTable({"scene",

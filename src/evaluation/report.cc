@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "evaluation/sfm_metrics.h"
 #include "util/file.h"
 
 namespace colmap_gcn {
@@ -197,15 +198,8 @@ struct SceneTables {
                   "pairing (s)",
                   "matching (s)",
                   "speedup vs exhaustive"}};
-  Table mapping{{"method",
-                 "images",
-                 "registered",
-                 "models",
-                 "points",
-                 "observations",
-                 "track length",
-                 "reproj. error (px)",
-                 "mapping (s)"}};
+  Table mapping{
+      SfmMetricColumns({"method"}, {"reproj. error (px)", "mapping (s)"})};
   Table pose{{"method",
               "aligned",
               "median rot. (deg)",
@@ -233,7 +227,7 @@ void AddMethodRows(const SceneResult& scene,
     if (scene.has_gt_cameras) pose->Row({label, status});
     return;
   }
-  const RetrievalMetrics& r = method.retrieval;
+  const PairSetScore& r = method.retrieval;
   retrieval->Row({label,
                   method.k > 0 ? std::to_string(method.k) : "-",
                   Count(r.num_pairs),
@@ -390,7 +384,7 @@ std::string FormatBenchmarkReport(const BenchmarkResults& results) {
                  "registered",
                  "accurate cameras"});
   for (const std::string& spec : results.methods) {
-    std::vector<RetrievalMetrics> retrieval;
+    std::vector<PairSetScore> retrieval;
     double ratio = 0, accurate = 0;
     size_t verified_wrong = 0, registered = 0, images = 0, with_pose = 0;
     size_t unavailable = 0;
@@ -416,7 +410,7 @@ std::string FormatBenchmarkReport(const BenchmarkResults& results) {
       average.Row({spec, "0", unavailable > 0 ? "unavailable" : "-"});
       continue;
     }
-    const RetrievalMetrics mean = AverageRetrievalMetrics(retrieval);
+    const PairSetScore mean = AverageRetrievalMetrics(retrieval);
     average.Row(
         {spec,
          Count(retrieval.size()),

@@ -2,7 +2,7 @@
 
 namespace colmap_gcn {
 
-Json RetrievalMetricsToJson(const RetrievalMetrics& metrics) {
+Json RetrievalMetricsToJson(const PairSetScore& metrics) {
   Json json = Json::object();
   json["num_pairs"] = metrics.num_pairs;
   json["num_labelled_pairs"] = metrics.num_labelled_pairs;

@@ -37,7 +37,7 @@ struct MethodResult {
   double mapping_seconds = 0;
   std::string session;  // the benchmark run that matched
   std::string same_as;  // the method whose run this row repeats, or ""
-  RetrievalMetrics retrieval;
+  PairSetScore retrieval;
   SfmMetrics sfm;
   // Merged collections only (collection.h): pairs across scenes, attempted
   // and verified, and each scene's registration.
@@ -82,7 +82,7 @@ struct BenchmarkResults {
   PoseErrorOptions pose_options;
 };
 
-Json RetrievalMetricsToJson(const RetrievalMetrics& metrics);
+Json RetrievalMetricsToJson(const PairSetScore& metrics);
 Json SfmMetricsToJson(const SfmMetrics& metrics);
 Json MethodResultToJson(const MethodResult& result);
 Json SceneResultToJson(const SceneResult& result);

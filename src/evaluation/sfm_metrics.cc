@@ -6,6 +6,22 @@
 
 namespace colmap_gcn {
 
+std::vector<std::string> SfmMetricColumns(
+    const std::vector<std::string>& before,
+    const std::vector<std::string>& after) {
+  std::vector<std::string> columns = before;
+  for (const char* column : {"images",
+                             "registered",
+                             "models",
+                             "points",
+                             "observations",
+                             "track length"}) {
+    columns.push_back(column);
+  }
+  columns.insert(columns.end(), after.begin(), after.end());
+  return columns;
+}
+
 SfmMetrics EvaluateSparseModels(const std::string& sparse_path,
                                 size_t num_images,
                                 const Reconstruction* ground_truth,

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "evaluation/alignment.h"
 #include "scene/reconstruction.h"
@@ -29,5 +30,11 @@ SfmMetrics EvaluateSparseModels(const std::string& sparse_path,
                                 size_t num_images,
                                 const Reconstruction* ground_truth,
                                 const PoseErrorOptions& pose_options);
+
+// The mapping table's columns (report.md and gcn_report's page): `before`,
+// then num_images through mean_track_length, then `after`.
+std::vector<std::string> SfmMetricColumns(
+    const std::vector<std::string>& before,
+    const std::vector<std::string>& after);
 
 }  // namespace colmap_gcn

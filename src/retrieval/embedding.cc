@@ -1,5 +1,6 @@
 #include "retrieval/embedding.h"
 
+#include "retrieval/embedding_spec.h"
 #include "util/error.h"
 #include "util/option_manager.h"
 #include "util/string.h"
@@ -9,11 +10,25 @@ namespace colmap_gcn {
 const EnumNames<EmbeddingType>& EmbeddingTypeNames() {
   static const EnumNames<EmbeddingType> names = {
       {"default", EmbeddingType::kDefault},
-      {"vlad", EmbeddingType::kVlad},
-      {"onnx", EmbeddingType::kOnnx},
-      {"vlad+onnx", EmbeddingType::kVladOnnx},
-      {"imported", EmbeddingType::kImported}};
+#define COLMAP_GCN_EMBEDDING_NAME(value, name, spec) \
+  {name, EmbeddingType::value},
+      COLMAP_GCN_EMBEDDINGS(COLMAP_GCN_EMBEDDING_NAME)
+#undef COLMAP_GCN_EMBEDDING_NAME
+  };
   return names;
+}
+
+const EmbeddingSpec& GetEmbeddingSpec(const EmbeddingType type) {
+  static const std::vector<std::pair<EmbeddingType, EmbeddingSpec>> specs = {
+#define COLMAP_GCN_EMBEDDING_ENTRY(value, name, spec) \
+  {EmbeddingType::value, spec()},
+      COLMAP_GCN_EMBEDDINGS(COLMAP_GCN_EMBEDDING_ENTRY)
+#undef COLMAP_GCN_EMBEDDING_ENTRY
+  };
+  for (const auto& [entry, spec] : specs) {
+    if (entry == type) return spec;
+  }
+  ThrowError("no embedding is registered as \"", type, "\"");
 }
 
 const EnumNames<EmbeddingType>& ComputedEmbeddingTypeNames() {
@@ -37,11 +52,11 @@ bool EmbeddingUsesCnn(const EmbeddingType type) {
 }
 
 EmbeddingType EmbeddingConfigType(const GcnEmbeddingConfig& config) {
-  if (StringStartsWith(config.type, "imported")) {
-    return EmbeddingType::kImported;
-  }
-  for (const auto& [name, type] : ComputedEmbeddingTypeNames()) {
-    if (name == config.type) return type;
+  for (const auto& [name, type] : EmbeddingTypeNames()) {
+    if (type != EmbeddingType::kDefault &&
+        (config.type == name || StringStartsWith(config.type, name + ":"))) {
+      return type;
+    }
   }
   ThrowError(
       "the GCN model has an unknown embedding type \"", config.type, "\"");

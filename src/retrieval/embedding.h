@@ -10,20 +10,28 @@ namespace colmap_gcn {
 
 class OptionManager;
 
+// Every embedding, listed once: its EmbeddingType value, its name (for
+// --GcnMatching.embedding and the type a model file stores) and the function,
+// defined in the embedding's own file, that returns its EmbeddingSpec
+// (embedding_spec.h). Like COLMAP's CAMERA_MODEL_CASES, the enum, the names
+// and the table GetEmbeddingSpec reads expand from this list, so adding an
+// embedding is one line here. The order is the order of the names in -h.
+#define COLMAP_GCN_EMBEDDINGS(EMBEDDING)                   \
+  EMBEDDING(kVlad, "vlad", VladEmbeddingSpec)              \
+  EMBEDDING(kOnnx, "onnx", OnnxEmbeddingSpec)              \
+  EMBEDDING(kVladOnnx, "vlad+onnx", VladOnnxEmbeddingSpec) \
+  EMBEDDING(kImported, "imported", ImportedEmbeddingSpec)  \
+  /* the end of the list: a new embedding adds one line above */
+
 // The global embedding of an image: what the kNN graph, the GCN and the
-// adaptive generators compare images by.
+// adaptive generators compare images by. kDefault is no embedding but the
+// choice left to the generator: the GCN model's, or for knn VLAD (or the
+// imported descriptors when a descriptor file is named).
 enum class EmbeddingType {
-  // As chosen elsewhere: the GCN model's, or for knn VLAD (or the imported
-  // descriptors when a descriptor file is named).
   kDefault,
-  // RootSIFT -> VLAD -> PCA-whitening of the database's features.
-  kVlad,
-  // An ONNX CNN on the image files (OpenCV DNN; GeM, centring, PCA).
-  kOnnx,
-  // Both, each half L2-normalised and scaled by 1/sqrt(2).
-  kVladOnnx,
-  // Global descriptors from a file (hloc HDF5, npy, txt).
-  kImported,
+#define COLMAP_GCN_EMBEDDING_VALUE(value, name, spec) value,
+  COLMAP_GCN_EMBEDDINGS(COLMAP_GCN_EMBEDDING_VALUE)
+#undef COLMAP_GCN_EMBEDDING_VALUE
 };
 
 // default | vlad | onnx | vlad+onnx | imported: --GcnMatching.embedding.
@@ -47,8 +55,9 @@ struct GcnEmbeddingConfig {
   std::string blob;
 };
 
-// The EmbeddingType of a model's config ("imported:<name>" is kImported);
-// throws Error for an unknown type.
+// The EmbeddingType of a model's config: the embedding named config.type, or
+// "<name>:<detail>" (e.g. "imported:<name>" is kImported); throws Error for an
+// unknown type.
 EmbeddingType EmbeddingConfigType(const GcnEmbeddingConfig& config);
 
 // The embedding flags gcn_matcher's gcn and knn generators share

@@ -1,7 +1,7 @@
 #include "retrieval/global_descriptors.h"
 
-#include "retrieval/descriptor_import.h"
 #include "retrieval/embedding_cache.h"
+#include "retrieval/embedding_spec.h"
 #include "retrieval/hash.h"
 #include "util/error.h"
 #include "util/file.h"
@@ -14,8 +14,10 @@ namespace colmap_gcn {
 void GlobalDescriptorOptions::Check() const {
   vlad.Check();
   CHECK_OPTION(embedding,
-               EmbeddingUsesVlad(embedding) || EmbeddingUsesCnn(embedding),
-               "be vlad, onnx or vlad+onnx");
+               embedding != EmbeddingType::kDefault &&
+                   embedding != EmbeddingType::kImported,
+               "be an embedding computed from the database (not default or "
+               "imported: descriptor_path imports)");
   cnn.Check();
   CHECK_OPTION_NUM_THREADS(num_threads);
 }
@@ -85,38 +87,16 @@ EmbeddingMatrix ComputeGlobalDescriptors(const Database& database,
                                          const GlobalDescriptorOptions& options,
                                          std::vector<image_t>* image_ids) {
   options.Check();
-  if (!options.descriptor_path.empty()) {
-    return MatchDescriptorsToImages(
-        ReadGlobalDescriptors(options.descriptor_path),
-        database.ReadAllImages(),
-        image_ids);
-  }
-  EmbeddingMatrix cnn_embeddings;
-  if (EmbeddingUsesCnn(options.embedding)) {
-    CnnEmbeddingOptions cnn = options.cnn;
-    cnn.num_threads = options.num_threads;
-    const CnnNetwork network(cnn);
-    cnn_embeddings =
-        MakeCnnEmbeddingModel(network).Apply(ComputeDatabaseCnnDescriptors(
-            database,
-            network,
-            options.image_path,
-            options.use_cache ? DefaultCnnCachePath(database.Path()) : "",
-            image_ids));
-    if (!EmbeddingUsesVlad(options.embedding)) return cnn_embeddings;
-  }
-  const VladEmbedding embedding =
-      options.embedding_path.empty()
-          ? LoadOrTrainSelfEmbedding(database, options.vlad, options.use_cache)
-          : VladEmbedding::Read(options.embedding_path);
-  const EmbeddingMatrix vlad_embeddings = ComputeDatabaseEmbeddings(
+  const EmbeddingType type = options.descriptor_path.empty()
+                                 ? options.embedding
+                                 : EmbeddingType::kImported;
+  const std::unique_ptr<DatabaseEmbedding> embedding =
+      GetEmbeddingSpec(type).build(database, options);
+  return embedding->Finalize(embedding->EmbedDatabase(
       database,
-      embedding,
-      image_ids,
-      options.use_cache ? DefaultEmbeddingCachePath(database.Path()) : "",
-      options.num_threads);
-  if (!EmbeddingUsesCnn(options.embedding)) return vlad_embeddings;
-  return ConcatenateEmbeddings(vlad_embeddings, cnn_embeddings);
+      options.image_path,
+      options.use_cache ? DefaultCnnCachePath(database.Path()) : "",
+      image_ids));
 }
 
 }  // namespace colmap_gcn

@@ -24,7 +24,8 @@ struct GlobalDescriptorOptions {
   // Training options for the self-trained model.
   VladOptions vlad;
 
-  // The embedding when no descriptors are imported: vlad | onnx (a CNN on
+  // The embedding when no descriptors are imported (built through its
+  // EmbeddingSpec::build): vlad | onnx (a CNN on
   // the image files, centred, no PCA) | vlad+onnx (both, each half).
   EmbeddingType embedding = EmbeddingType::kVlad;
 

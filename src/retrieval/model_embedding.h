@@ -6,6 +6,7 @@
 
 #include "retrieval/cnn_embedding.h"
 #include "retrieval/embedding.h"
+#include "retrieval/embedding_spec.h"
 #include "retrieval/vlad.h"
 #include "scene/database.h"
 
@@ -35,13 +36,12 @@ struct ModelEmbeddingOptions {
   bool use_vlad_cache = true;
 };
 
-// The one place an embedding is built for a database: a model's embedding
-// (GcnEmbeddingConfig), loaded once (VLAD codebook, or the ONNX network
-// checked against the model's checksum), to embed one or more databases,
-// with caches keyed (fingerprinted) on the features or image files and the
-// model. Throws Error for an unknown type, a type other than the one asked
-// for, a missing onnx_path / descriptor_path, another network or
-// configuration.
+// A model's embedding (GcnEmbeddingConfig) loaded once through its
+// EmbeddingSpec (VLAD codebook, or the ONNX network checked against the
+// model's checksum), to embed one or more databases, with caches keyed
+// (fingerprinted) on the features or image files and the model. Throws Error
+// for an unknown type, a type other than the one asked for, a missing onnx_path
+// / descriptor_path, another network or configuration.
 class ModelEmbedder {
  public:
   ModelEmbedder(const GcnEmbeddingConfig& config,
@@ -65,15 +65,12 @@ class ModelEmbedder {
 
  private:
   EmbeddingType type_;
-  ModelEmbeddingOptions options_;
-  VladEmbedding vlad_;
-  CnnEmbeddingModel cnn_model_;
-  std::unique_ptr<CnnNetwork> network_;
+  std::unique_ptr<DatabaseEmbedding> embedding_;
 };
 
 // The embedding config of a trained VLAD ("vlad"), CNN ("onnx") or both
 // ("vlad+onnx": blob = magic + u64 length + VLAD bytes + u64 length + CNN
-// bytes).
+// bytes); defined beside the vlad+onnx reader in embedding_specs.cc.
 GcnEmbeddingConfig MakeEmbeddingConfig(const VladEmbedding* vlad,
                                        const CnnEmbeddingModel* cnn);
 

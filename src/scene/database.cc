@@ -210,6 +210,39 @@ std::vector<DatabaseImage> Database::ReadImagesWhere(
   return images;
 }
 
+std::vector<DatabaseCamera> Database::ReadAllCameras() const {
+  SqliteStatement stmt(db_,
+                       path_,
+                       "SELECT camera_id, model, width, height, params, "
+                       "prior_focal_length FROM cameras ORDER BY camera_id");
+  std::vector<DatabaseCamera> cameras;
+  while (stmt.Step()) {
+    DatabaseCamera camera;
+    camera.camera_id = static_cast<camera_t>(stmt.Int64(0));
+    camera.model_id = static_cast<int>(stmt.Int64(1));
+    camera.width = static_cast<uint64_t>(stmt.Int64(2));
+    camera.height = static_cast<uint64_t>(stmt.Int64(3));
+    size_t num_bytes = 0;
+    const void* data = stmt.Blob(4, &num_bytes);
+    if (num_bytes % sizeof(double) != 0) {
+      ThrowError("database ",
+                 path_,
+                 ": params blob of camera ",
+                 camera.camera_id,
+                 " has ",
+                 num_bytes,
+                 " bytes, not a multiple of 8");
+    }
+    camera.params.resize(num_bytes / sizeof(double));
+    if (num_bytes > 0) {
+      std::memcpy(camera.params.data(), data, num_bytes);
+    }
+    camera.has_prior_focal_length = stmt.Int64(5) != 0;
+    cameras.push_back(std::move(camera));
+  }
+  return cameras;
+}
+
 std::vector<DatabaseImage> Database::ReadAllImages() const {
   return ReadImagesWhere("");
 }

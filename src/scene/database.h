@@ -106,7 +106,9 @@ class Database {
   size_t NumImages() const;
   size_t NumDescriptors() const;  // summed over images
 
-  std::vector<DatabaseImage> ReadAllImages() const;  // ordered by image_id
+  // Throws Error for a params blob that is not a whole number of doubles.
+  std::vector<DatabaseCamera> ReadAllCameras() const;  // ordered by camera_id
+  std::vector<DatabaseImage> ReadAllImages() const;    // ordered by image_id
 
   FeatureDescriptors ReadDescriptors(image_t image_id) const;
   size_t NumDescriptorsForImage(image_t image_id) const;

@@ -55,30 +55,6 @@ TwoViewGeometryStore::TwoViewGeometryStore(const std::string& path,
                                            const Mode mode)
     : Database(path, mode), writable_(mode == Mode::kReadWrite) {}
 
-std::vector<DatabaseCamera> TwoViewGeometryStore::ReadCameras() const {
-  SqliteStatement stmt(Handle(),
-                       Path(),
-                       "SELECT camera_id, model, width, height, params, "
-                       "prior_focal_length FROM cameras ORDER BY camera_id");
-  std::vector<DatabaseCamera> cameras;
-  while (stmt.Step()) {
-    DatabaseCamera camera;
-    camera.camera_id = static_cast<camera_t>(stmt.Int64(0));
-    camera.model_id = static_cast<int>(stmt.Int64(1));
-    camera.width = static_cast<uint64_t>(stmt.Int64(2));
-    camera.height = static_cast<uint64_t>(stmt.Int64(3));
-    size_t num_bytes = 0;
-    const void* data = stmt.Blob(4, &num_bytes);
-    camera.params.resize(num_bytes / sizeof(double));
-    if (!camera.params.empty()) {
-      std::memcpy(camera.params.data(), data, camera.params.size() * 8);
-    }
-    camera.has_prior_focal_length = stmt.Int64(5) != 0;
-    cameras.push_back(std::move(camera));
-  }
-  return cameras;
-}
-
 Eigen::Matrix<float, Eigen::Dynamic, 2>
 TwoViewGeometryStore::ReadKeypointPositions(const image_t image_id) const {
   SqliteStatement stmt(Handle(),

@@ -45,7 +45,8 @@ class TwoViewGeometryStore : public Database {
   explicit TwoViewGeometryStore(const std::string& path,
                                 Mode mode = Mode::kReadOnly);
 
-  std::vector<DatabaseCamera> ReadCameras() const;  // ordered by camera_id
+  // Database::ReadAllCameras under the name the look-alike filter calls.
+  std::vector<DatabaseCamera> ReadCameras() const { return ReadAllCameras(); }
 
   // Keypoint positions (x, y; pixel centre at 0.5), one row per keypoint.
   Eigen::Matrix<float, Eigen::Dynamic, 2> ReadKeypointPositions(

@@ -22,9 +22,9 @@ std::string Fixed3(double value) {
   return text;
 }
 
-std::string Scores(const PairSetScores& scores) {
-  return Fixed3(scores.Precision()) + " | " + Fixed3(scores.Recall()) + " | " +
-         Fixed3(scores.F());
+std::string Scores(const PairSetScore& scores) {
+  return Fixed3(scores.precision) + " | " + Fixed3(scores.recall) + " | " +
+         Fixed3(scores.f_measure);
 }
 
 // Mean precision, recall and F of one pair set per scene.
@@ -37,10 +37,10 @@ GcnSensitivityPoint MeanScores(
   point.parameter = parameter;
   point.value = value;
   for (size_t s = 0; s < scenes.size(); ++s) {
-    const PairSetScores scores = ScorePairSet(pairs[s], scenes[s]);
-    point.precision += scores.Precision();
-    point.recall += scores.Recall();
-    point.f += scores.F();
+    const PairSetScore scores = ScorePairSet(pairs[s], scenes[s]);
+    point.precision += scores.precision;
+    point.recall += scores.recall;
+    point.f += scores.f_measure;
     point.pairs_per_image += static_cast<double>(scores.num_pairs) /
                              std::max<int64_t>(1, scenes[s].embeddings.rows());
   }
@@ -158,12 +158,12 @@ FixedKComparison CompareWithFixedK(const GcnModel& model,
   knn_options.num_threads = num_threads;
   const KnnGraph graph = ComputeExactKnn(scene.embeddings, knn_options);
   for (int k = 1; k <= graph.K(); ++k) {
-    const PairSetScores scores = ScorePairSet(TopKPairs(graph, k), scene);
+    const PairSetScore scores = ScorePairSet(TopKPairs(graph, k), scene);
     if (result.equal_k == 0 && scores.num_pairs >= result.gcn.num_pairs) {
       result.equal_k = k;
       result.top_k_equal = scores;
     }
-    if (result.best_k == 0 || scores.F() > result.top_k_best.F()) {
+    if (result.best_k == 0 || scores.f_measure > result.top_k_best.f_measure) {
       result.best_k = k;
       result.top_k_best = scores;
     }
@@ -211,20 +211,20 @@ void FormatOperatingPointTable(const std::vector<FixedKComparison>& comparisons,
     std::snprintf(line, sizeof(line), "%.3g", c.threshold);
     out << "| " << c.scene << " | " << c.num_images << " | " << line << " | "
         << c.num_candidates << " | " << c.gcn.num_pairs << " | "
-        << Fixed3(c.KeptFraction()) << " | " << c.gcn.num_positives << " | "
+        << Fixed3(c.KeptFraction()) << " | " << c.gcn.num_matchable << " | "
         << Scores(c.gcn) << " | " << Scores(c.equal) << " | " << c.equal_k
         << " | " << Scores(c.top_k_equal) << " | " << c.best_k << " | "
         << Scores(c.top_k_best) << " | " << Fixed3(c.gcn_ap) << " | "
         << Fixed3(c.similarity_ap) << " |\n";
     gcn_ap += c.gcn_ap;
     sim_ap += c.similarity_ap;
-    gcn += c.gcn.F();
-    equal += c.equal.F();
-    top_k += c.top_k_equal.F();
-    best += c.top_k_best.F();
-    gcn_wins += c.gcn.F() >= c.top_k_best.F();
-    operating_target += c.gcn.Precision() >= kTargetPrecision &&
-                        c.gcn.Recall() >= kPrecisionAtRecall;
+    gcn += c.gcn.f_measure;
+    equal += c.equal.f_measure;
+    top_k += c.top_k_equal.f_measure;
+    best += c.top_k_best.f_measure;
+    gcn_wins += c.gcn.f_measure >= c.top_k_best.f_measure;
+    operating_target += c.gcn.precision >= kTargetPrecision &&
+                        c.gcn.recall >= kPrecisionAtRecall;
     reachable_target += c.gcn_precision_at_recall >= kTargetPrecision;
     similarity_target += c.similarity_precision_at_recall >= kTargetPrecision;
   }
@@ -269,13 +269,13 @@ void FormatWrongPairsTable(const std::vector<FixedKComparison>& comparisons,
   int fewer = 0;
   for (const auto& c : comparisons) {
     out << "| " << c.scene << " | " << c.num_unrelated_pairs << " | "
-        << c.gcn.num_pairs << " | " << Fixed3(c.gcn.Recall()) << " | "
-        << c.gcn.num_unrelated << " | " << c.equal_recall.num_pairs << " | "
-        << Fixed3(c.equal_recall.Recall()) << " | "
-        << c.equal_recall.num_unrelated << " |\n";
-    gcn_wrong += c.gcn.num_unrelated;
-    knn_wrong += c.equal_recall.num_unrelated;
-    fewer += c.gcn.num_unrelated < c.equal_recall.num_unrelated;
+        << c.gcn.num_pairs << " | " << Fixed3(c.gcn.recall) << " | "
+        << c.gcn.num_wrong_pairs << " | " << c.equal_recall.num_pairs << " | "
+        << Fixed3(c.equal_recall.recall) << " | "
+        << c.equal_recall.num_wrong_pairs << " |\n";
+    gcn_wrong += c.gcn.num_wrong_pairs;
+    knn_wrong += c.equal_recall.num_wrong_pairs;
+    fewer += c.gcn.num_wrong_pairs < c.equal_recall.num_wrong_pairs;
   }
   out << "\nWrong pairs in total: GCN " << gcn_wrong << ", kNN@R " << knn_wrong
       << "; GCN admits fewer on " << fewer << " of " << comparisons.size()
@@ -305,7 +305,7 @@ void FormatCollectionTable(const std::vector<FixedKComparison>& comparisons,
       return std::string(text);
     };
     out << "| " << c.scene << " | " << c.num_images << " | " << c.gcn.num_pairs
-        << " | " << Fixed3(c.gcn.Recall()) << " | " << c.gcn.num_cross_scene
+        << " | " << Fixed3(c.gcn.recall) << " | " << c.gcn.num_cross_scene
         << " | " << percent(c.gcn.num_cross_scene, c.gcn.num_pairs) << " | "
         << c.equal_recall.num_pairs << " | " << c.equal_recall.num_cross_scene
         << " | "

@@ -33,16 +33,16 @@ struct FixedKComparison {
   // kNN with k = k1 would match; gcn.num_pairs of them are kept.
   size_t num_candidates = 0;
   double KeptFraction() const;
-  PairSetScores gcn;    // the model's recommended settings and threshold
-  PairSetScores equal;  // the gcn.num_pairs most similar pairs
+  PairSetScore gcn;    // the model's recommended settings and threshold
+  PairSetScore equal;  // the gcn.num_pairs most similar pairs
   // The fewest most-similar-first pairs with at least the GCN's true
   // positives (kNN at equal recall): its num_unrelated against the GCN's
   // is the wrong-pair comparison of ambiguous scenes.
-  PairSetScores equal_recall;
+  PairSetScore equal_recall;
   int equal_k = 0;  // smallest per-image k giving >= gcn.num_pairs
-  PairSetScores top_k_equal;
+  PairSetScore top_k_equal;
   int best_k = 0;  // per-image k in [1, max_k] with the best F
-  PairSetScores top_k_best;
+  PairSetScore top_k_best;
   // Ranking of the GCN's candidate pairs (the 1-hop nodes of every QES):
   // average precision by GCN score and by embedding similarity.
   double gcn_ap = 0;

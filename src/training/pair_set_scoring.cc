@@ -21,42 +21,19 @@ std::unordered_set<uint64_t> PairKeys(
 
 }  // namespace
 
-PrecisionRecall PairSetScores::Scores() const {
-  return ComputePrecisionRecall(num_true_positives, num_pairs, num_positives);
-}
-
-double PairSetScores::Precision() const { return Scores().precision; }
-
-double PairSetScores::Recall() const { return Scores().recall; }
-
-double PairSetScores::F() const { return Scores().f_measure; }
-
-PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
-                           const GcnTrainingScene& scene) {
+PairSetScore ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
+                          const GcnTrainingScene& scene) {
   const std::unordered_set<uint64_t> positives = PairKeys(scene.positive_pairs);
   const std::unordered_set<uint64_t> unrelated =
       PairKeys(scene.unrelated_pairs);
-  std::unordered_set<uint64_t> selected;
-  for (const auto& [i, j] : pairs) {
-    if (i != j) selected.insert(PairKey(i, j));
-  }
-  PairSetScores scores;
-  scores.num_pairs = selected.size();
-  scores.num_positives = positives.size();
-  for (const uint64_t key : selected) {
-    scores.num_true_positives += positives.count(key);
-    scores.num_unrelated += unrelated.count(key);
-  }
-  if (!scene.part_of_row.empty()) {
-    for (const auto& [i, j] : pairs) {
-      // Each distinct pair once: its key leaves the set when counted.
-      if (i != j && scene.part_of_row[i] != scene.part_of_row[j] &&
-          selected.erase(PairKey(i, j)) > 0) {
-        ++scores.num_cross_scene;
-      }
-    }
-  }
-  return scores;
+  return ScorePairSet(pairs, positives.size(), [&](int i, int j) {
+    PairLabel label;
+    label.matchable = positives.count(PairKey(i, j)) > 0;
+    label.wrong = unrelated.count(PairKey(i, j)) > 0;
+    label.cross_scene = !scene.part_of_row.empty() &&
+                        scene.part_of_row[i] != scene.part_of_row[j];
+    return label;
+  });
 }
 
 std::vector<std::pair<int, int>> MostSimilarPairs(
@@ -208,7 +185,7 @@ float SelectGcnThreshold(const GcnModel& model,
     for (size_t s = 0; s < scenes.size(); ++s) {
       sum_f +=
           ScorePairSet(PairsAtThreshold(candidates[s], threshold), scenes[s])
-              .F();
+              .f_measure;
     }
     const double mean_f = sum_f / scenes.size();
     if (mean_f >= best_f) {

@@ -4,30 +4,17 @@
 #include <utility>
 #include <vector>
 
+#include "evaluation/pair_set_score.h"
 #include "gcn/gcn_model.h"
-#include "math/precision_recall.h"
 #include "retrieval/knn.h"
 #include "training/gcn_training_samples.h"
 
 namespace colmap_gcn {
 
-// Retrieval quality of a pair set against a scene's labelled pairs.
-struct PairSetScores {
-  size_t num_pairs = 0;
-  size_t num_true_positives = 0;
-  size_t num_positives = 0;  // matchable pairs in the scene
-  // Selected pairs among the scene's unrelated_pairs (wrong pairs).
-  size_t num_unrelated = 0;
-  // Selected pairs across the parts of a collection (unrelated photos).
-  size_t num_cross_scene = 0;
-  PrecisionRecall Scores() const;
-  double Precision() const;
-  double Recall() const;
-  double F() const;
-};
-
-PairSetScores ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
-                           const GcnTrainingScene& scene);
+// The scene's labels (positive_pairs matchable, unrelated_pairs wrong, pairs
+// across part_of_row's parts cross-scene) of row pairs, every row labelled.
+PairSetScore ScorePairSet(const std::vector<std::pair<int, int>>& pairs,
+                          const GcnTrainingScene& scene);
 
 // The fixed-k retrieval baseline at an equal number of pairs: the
 // `num_pairs` most similar unordered pairs (ties by index).

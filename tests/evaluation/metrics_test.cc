@@ -66,7 +66,7 @@ TEST(PairLabels, CsvRoundTrip) {
   EXPECT_EQ(read.MatchablePairs({}), labels.MatchablePairs({}));
 }
 
-TEST(RetrievalMetrics, HandMadeSets) {
+TEST(PairSetScore, HandMadeSets) {
   const PairLabels labels = MakeLabels();
   const PairLabelOptions options;
   // 4 distinct labelled pairs (ab twice, aa dropped): ab, cd matchable; ae
@@ -79,8 +79,7 @@ TEST(RetrievalMetrics, HandMadeSets) {
                                             {"a", "e"},
                                             {"a", "d"},
                                             {"a", "z"}};
-  const RetrievalMetrics metrics =
-      ComputeRetrievalMetrics(pairs, labels, options);
+  const PairSetScore metrics = ComputeRetrievalMetrics(pairs, labels, options);
   EXPECT_EQ(metrics.num_pairs, 5u);
   EXPECT_EQ(metrics.num_labelled_pairs, 4u);
   EXPECT_EQ(metrics.num_matchable, 3u);
@@ -91,21 +90,21 @@ TEST(RetrievalMetrics, HandMadeSets) {
   EXPECT_DOUBLE_EQ(metrics.f_measure, 2 * 0.5 * (2.0 / 3) / (0.5 + 2.0 / 3));
 
   // The oracle: exactly the matchable pairs.
-  const RetrievalMetrics oracle =
+  const PairSetScore oracle =
       ComputeRetrievalMetrics(labels.MatchablePairs(options), labels, options);
   EXPECT_DOUBLE_EQ(oracle.precision, 1.0);
   EXPECT_DOUBLE_EQ(oracle.recall, 1.0);
   EXPECT_DOUBLE_EQ(oracle.f_measure, 1.0);
   EXPECT_EQ(oracle.num_wrong_pairs, 0u);
 
-  const RetrievalMetrics empty = ComputeRetrievalMetrics({}, labels, options);
+  const PairSetScore empty = ComputeRetrievalMetrics({}, labels, options);
   EXPECT_EQ(empty.precision, 0.0);
   EXPECT_EQ(empty.recall, 0.0);
   EXPECT_EQ(empty.f_measure, 0.0);
 }
 
-TEST(RetrievalMetrics, AverageIsPerScene) {
-  RetrievalMetrics a, b;
+TEST(PairSetScore, AverageIsPerScene) {
+  PairSetScore a, b;
   a.precision = 1.0;
   a.recall = 0.5;
   a.f_measure = FMeasure(1.0, 0.5);
@@ -114,7 +113,7 @@ TEST(RetrievalMetrics, AverageIsPerScene) {
   b.recall = 1.0;
   b.f_measure = FMeasure(0.5, 1.0);
   b.num_wrong_pairs = 3;
-  const RetrievalMetrics mean = AverageRetrievalMetrics({a, b});
+  const PairSetScore mean = AverageRetrievalMetrics({a, b});
   EXPECT_DOUBLE_EQ(mean.precision, 0.75);
   EXPECT_DOUBLE_EQ(mean.recall, 0.75);
   EXPECT_DOUBLE_EQ(mean.f_measure, FMeasure(1.0, 0.5));

@@ -56,6 +56,24 @@ TEST(ModelEmbedding, ConfigTypesAndDimensions) {
             EmbeddingType::kVlad);
 }
 
+TEST(ModelEmbedding, EveryListedEmbeddingIsRegistered) {
+  for (const auto& [name, type] : EmbeddingTypeNames()) {
+    if (type == EmbeddingType::kDefault) {
+      EXPECT_THROW(GetEmbeddingSpec(type), Error);
+      continue;
+    }
+    const EmbeddingSpec& spec = GetEmbeddingSpec(type);
+    EXPECT_TRUE(spec.load) << name;
+    EXPECT_TRUE(spec.build) << name;
+    // A model's config names the embedding, optionally with a detail.
+    GcnEmbeddingConfig config;
+    config.type = name;
+    EXPECT_EQ(EmbeddingConfigType(config), type);
+    config.type = name + ":detail";
+    EXPECT_EQ(EmbeddingConfigType(config), type);
+  }
+}
+
 TEST(ModelEmbedding, ErrorsNameWhatIsMissingOrDifferent) {
   const VladEmbedding vlad = SmallVlad();
   const CnnEmbeddingModel cnn = FakeCnn(1);

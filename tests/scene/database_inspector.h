@@ -38,7 +38,6 @@ class DatabaseInspector : public Database {
   size_t NumMatchedPairs() const;       // rows in matches
   size_t NumTwoViewGeometries() const;  // rows in two_view_geometries
 
-  std::vector<DatabaseCamera> ReadAllCameras() const;  // ordered by camera_id
   bool ExistsImageWithName(const std::string& name) const;
   DatabaseImage ReadImageWithName(const std::string& name) const;  // throws
 

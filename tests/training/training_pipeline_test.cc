@@ -45,18 +45,18 @@ TEST(TrainingPipeline, ScorePairSetCountsEachUnorderedPairOnce) {
   scene.embeddings = EmbeddingMatrix::Zero(5, 2);
   scene.positive_pairs = {{0, 1}, {2, 3}, {1, 4}};
   // (1, 0) repeats (0, 1); (2, 2) is no pair.
-  const PairSetScores scores =
+  const PairSetScore scores =
       ScorePairSet({{0, 1}, {1, 0}, {3, 2}, {0, 4}, {2, 2}}, scene);
   EXPECT_EQ(scores.num_pairs, 3u);
   EXPECT_EQ(scores.num_true_positives, 2u);
-  EXPECT_EQ(scores.num_positives, 3u);
-  EXPECT_DOUBLE_EQ(scores.Precision(), 2.0 / 3.0);
-  EXPECT_DOUBLE_EQ(scores.Recall(), 2.0 / 3.0);
-  EXPECT_DOUBLE_EQ(scores.F(), 2.0 / 3.0);
-  EXPECT_EQ(ScorePairSet({}, scene).F(), 0.0);
-  EXPECT_EQ(scores.num_unrelated, 0u);  // the scene lists none
+  EXPECT_EQ(scores.num_matchable, 3u);
+  EXPECT_DOUBLE_EQ(scores.precision, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(scores.recall, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(scores.f_measure, 2.0 / 3.0);
+  EXPECT_EQ(ScorePairSet({}, scene).f_measure, 0.0);
+  EXPECT_EQ(scores.num_wrong_pairs, 0u);  // the scene lists none
   scene.unrelated_pairs = {{4, 0}, {1, 2}};
-  EXPECT_EQ(ScorePairSet({{0, 1}, {0, 4}, {3, 2}}, scene).num_unrelated, 1u);
+  EXPECT_EQ(ScorePairSet({{0, 1}, {0, 4}, {3, 2}}, scene).num_wrong_pairs, 1u);
 }
 
 TEST(TrainingPipeline, TopKPairsIsTheUnionOfEveryImagesNeighbours) {
@@ -138,12 +138,13 @@ TEST(TrainingPipeline, ThresholdSelectionMaximisesMeanF) {
   const float selected = SelectGcnThreshold(model, {scene, scene}, 1);
   EXPECT_EQ(selected, SelectGcnThreshold(model, {scene}, 2));
   const double selected_f =
-      ScorePairSet(PairsAtThreshold(candidates, selected), scene).F();
+      ScorePairSet(PairsAtThreshold(candidates, selected), scene).f_measure;
   std::vector<float> grid = {0.01f, 0.02f, 0.97f, 0.98f, 0.99f, 0.999f};
   for (int step = 1; step <= 19; ++step) grid.push_back(0.05f * step);
   for (const float threshold : grid) {
-    EXPECT_LE(ScorePairSet(PairsAtThreshold(candidates, threshold), scene).F(),
-              selected_f + 1e-12)
+    EXPECT_LE(
+        ScorePairSet(PairsAtThreshold(candidates, threshold), scene).f_measure,
+        selected_f + 1e-12)
         << "threshold " << threshold;
   }
   EXPECT_EQ(SelectGcnThreshold(model, {}, 1), 0.5f);
@@ -170,12 +171,12 @@ TEST(TrainingPipeline, MergedScenesStackImagesAndMakeCrossPairsUnrelated) {
                 {0, 2}, {0, 3}, {0, 4}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
   EXPECT_EQ(merged.part_of_row, (std::vector<int>{0, 0, 0, 1, 1}));
   // Pairs across the parts are counted once, in either order.
-  const PairSetScores scores =
+  const PairSetScore scores =
       ScorePairSet({{0, 1}, {3, 0}, {0, 3}, {4, 2}, {3, 4}, {0, 2}}, merged);
   EXPECT_EQ(scores.num_pairs, 5u);
   EXPECT_EQ(scores.num_true_positives, 2u);
   EXPECT_EQ(scores.num_cross_scene, 2u);
-  EXPECT_EQ(scores.num_unrelated, 3u);
+  EXPECT_EQ(scores.num_wrong_pairs, 3u);
   EXPECT_EQ(ScorePairSet({{3, 0}}, a).num_cross_scene, 0u);
   b.embeddings = EmbeddingMatrix::Zero(2, 3);
   EXPECT_THROW(MergeTrainingScenes("a+b", {a, b}), Error);
@@ -226,11 +227,11 @@ TEST(ModelEvaluation, FixedKComparisonIsConsistent) {
   // best k has the highest F of every k.
   const int n = static_cast<int>(scene.embeddings.rows());
   for (int k = 1; k < n; ++k) {
-    EXPECT_LE(ScorePairSet(TopKPairs(scene.embeddings, k, 1), scene).F(),
-              c.top_k_best.F() + 1e-12);
+    EXPECT_LE(ScorePairSet(TopKPairs(scene.embeddings, k, 1), scene).f_measure,
+              c.top_k_best.f_measure + 1e-12);
   }
-  EXPECT_GE(c.top_k_best.F(), c.top_k_equal.F());
-  EXPECT_GT(c.top_k_best.F(), 0.0);
+  EXPECT_GE(c.top_k_best.f_measure, c.top_k_equal.f_measure);
+  EXPECT_GT(c.top_k_best.f_measure, 0.0);
   const std::string table = FormatFixedKComparison({c, c});
   EXPECT_NE(table.find("| clusters |"), std::string::npos) << table;
   EXPECT_NE(table.find("of 2 scenes"), std::string::npos) << table;
@@ -323,10 +324,10 @@ TEST(ModelEvaluation, EqualRecallBaselineCountsWrongPairs) {
   }
   const FixedKComparison c = CompareWithFixedK(SmallModel(), scene, 100, 2);
   EXPECT_EQ(c.num_unrelated_pairs, scene.unrelated_pairs.size());
-  EXPECT_EQ(c.gcn.num_unrelated, c.gcn.num_pairs - c.gcn.num_true_positives);
+  EXPECT_EQ(c.gcn.num_wrong_pairs, c.gcn.num_pairs - c.gcn.num_true_positives);
   // kNN@R: the shortest most-similar prefix reaching the GCN's recall.
   EXPECT_GE(c.equal_recall.num_true_positives, c.gcn.num_true_positives);
-  EXPECT_EQ(c.equal_recall.num_unrelated,
+  EXPECT_EQ(c.equal_recall.num_wrong_pairs,
             c.equal_recall.num_pairs - c.equal_recall.num_true_positives);
   ASSERT_GT(c.equal_recall.num_pairs, 0u);
   EXPECT_LT(ScorePairSet(MostSimilarPairs(scene.embeddings,
@@ -400,10 +401,10 @@ TEST(ModelEvaluation, SensitivityVariesOneParameterAtATime) {
   EXPECT_EQ(points[0].parameter, "k1");
   EXPECT_EQ(points[7].parameter, "threshold");
   // The model's own setting reproduces its pair set; thresholds only filter.
-  const PairSetScores own =
+  const PairSetScore own =
       ScorePairSet(GcnRetrievedPairs(model, scene, 1), scene);
-  EXPECT_DOUBLE_EQ(points[1].f, own.F());  // k1 = 10
-  EXPECT_DOUBLE_EQ(points[6].f, own.F());  // threshold 0.5
+  EXPECT_DOUBLE_EQ(points[1].f, own.f_measure);  // k1 = 10
+  EXPECT_DOUBLE_EQ(points[6].f, own.f_measure);  // threshold 0.5
   EXPECT_GE(points[5].pairs_per_image, points[6].pairs_per_image);
   EXPECT_GE(points[6].pairs_per_image, points[7].pairs_per_image);
   // Two neighbours per image cannot recall what ten do.
