@@ -287,12 +287,15 @@ std::string PreparedNote(const SceneResult& scene) {
   std::string note;
   for (const MethodResult& method : scene.methods) {
     if (method.prepare_seconds <= 0) continue;
-    note += (note.empty() ? "" : ", ") + MethodLabel(method) + " " +
-            Format("%.1f", method.prepare_seconds) + " s";
+    // A later method of the same family finds the tree already made.
+    const bool reused = method.prepare_seconds < 0.05;
+    note += (note.empty() ? "" : ", ") + method.method + ": " +
+            (reused ? std::string("reused")
+                    : Format("%.1f", method.prepare_seconds) + " s");
   }
   if (note.empty()) return "";
   return "\n_Made before pairing, as a user downloads it, and not in "
-         "pairing_s: the vocabulary tree (" +
+         "\"pairing (s)\": the vocabulary tree (" +
          note + ")._\n";
 }
 
