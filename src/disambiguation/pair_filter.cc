@@ -234,6 +234,17 @@ std::string CsvLine(const PairFilterEntry& entry) {
   return line.str();
 }
 
+// One line per verified pair: its evidence and decision.
+void WritePairsCsv(const PairFilterReport& report, const std::string& path) {
+  std::string csv =
+      "name1,name2,num_inliers,covered_cells,rotation_error,backbone_hops,in_"
+      "backbone,"
+      "in_tree,decision,config,ew,ex,ey,ez,num_h,h1w,h1x,h1y,h1z,h2w,h2x,h2y,"
+      "h2z\n";
+  for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
+  WriteFileAtomically(path, csv);
+}
+
 }  // namespace
 
 void PairFilterOptions::Check() const {
@@ -357,13 +368,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
     report.entries.push_back(std::move(entry));
   }
   if (!options.pairs_csv_path.empty()) {
-    std::string csv =
-        "name1,name2,num_inliers,covered_cells,rotation_error,backbone_hops,in_"
-        "backbone,"
-        "in_tree,decision,config,ew,ex,ey,ez,num_h,h1w,h1x,h1y,h1z,h2w,h2x,h2y,"
-        "h2z\n";
-    for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
-    WriteFileAtomically(options.pairs_csv_path, csv);
+    WritePairsCsv(report, options.pairs_csv_path);
   }
   report.seconds = timer.ElapsedSeconds();
   return report;
