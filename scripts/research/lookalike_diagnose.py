@@ -82,6 +82,9 @@ print("among pairs some rotation of which lies within 30deg of GT (real geometry
 for c,v in sorted(stats.items()):
     v=[x for x in v if min([e for e in (x[0],x[1]) if e>=0] or [999])<=30]
     print(" config",c,len(v),"| median E/F %.2f, #E/F>30deg %d | median best-H %.2f, #bestH>30deg %d"%(med([x[0] for x in v]),sum(x[0]>30 or x[0]<0 for x in v),med([x[1] for x in v]),sum(x[1]>30 or x[1]<0 for x in v)))
+far=[int(o[5]) for o in out if min([e for e in [o[7]]+o[8] if e>=0] or [0])>90]
+near=[int(o[5]) for o in out if min([e for e in [o[7]]+o[8] if e>=0] or [0])<=90]
+print("covered cells: %d pairs whose every rotation is >90deg off GT, median %s; %d others, median %s"%(len(far),sorted(far)[len(far)//2] if far else '-',len(near),sorted(near)[len(near)//2] if near else '-'))
 tree=[o for o in out if o[10]=='1']
 print("tree edges:",len(tree),"whose chained rotation is >10deg off GT:",sum(o[12]>10 for o in tree),[ (o[2],o[3],'config',o[1],round(o[12],1),o[11]) for o in tree if o[12]>10])
 print("rejected:")
