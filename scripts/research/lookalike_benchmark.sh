@@ -10,7 +10,10 @@
 # Writes OUTPUT_DIR/off.json and OUTPUT_DIR/on.json (copies of the two
 # runs' results.json) and prints, per scene and method: verified pairs,
 # wrong verified pairs reaching the mapper, pairs the filter removed (wrong
-# / matchable by the labels), registered images and accurate cameras.
+# / matchable by the labels), registered images, accurate cameras and the
+# fraction of the circle the registered cameras cover (RingCoverage in
+# evaluation/alignment.h; -1.00 from a build without it), against the
+# ground truth's.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 OUT="$(from_caller "$1")"
@@ -41,6 +44,8 @@ for path in sys.argv[1:]:
                   f'{m.get("lookalike_removed_matchable", 0)})  registered '
                   f'{sfm.get("num_registered", "-")}/{scene["num_images"]}  accurate '
                   f'{sfm.get("pose_errors", {}).get("fraction_accurate", "-")}  '
+                  f'ring {sfm.get("pose_errors", {}).get("ring_coverage", -1):.2f} '
+                  f'(GT {sfm.get("pose_errors", {}).get("gt_ring_coverage", -1):.2f})  '
                   f'filter {m.get("filter_seconds", 0):.2f} s, pairing+matching '
                   f'{m["pairing_seconds"] + m["matching_seconds"]:.1f} s')
 PY

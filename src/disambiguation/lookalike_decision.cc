@@ -118,16 +118,24 @@ struct RotationForest {
     }
   }
 
-  // Degrees between an edge's measured rotation and the chained one; -1
-  // without a rotation or across trees.
+  // Degrees between the chained rotation and the closest of an edge's
+  // measured ones; -1 without a rotation or across trees.
   double Error(const ViewGraphEdge& edge) const {
-    if (!edge.has_rotation ||
+    if ((!edge.has_rotation && edge.alternatives.empty()) ||
         component[edge.image1] != component[edge.image2]) {
       return -1;
     }
     const Eigen::Matrix3d chained =
         absolute[edge.image2] * absolute[edge.image1].transpose();
-    return RotationAngleDegrees(edge.rotation.transpose() * chained);
+    double error = 180;
+    if (edge.has_rotation) {
+      error = RotationAngleDegrees(edge.rotation.transpose() * chained);
+    }
+    for (const Eigen::Matrix3d& alternative : edge.alternatives) {
+      error = std::min(error,
+                       RotationAngleDegrees(alternative.transpose() * chained));
+    }
+    return error;
   }
 
   std::vector<std::vector<std::pair<int, int>>> tree;
@@ -141,6 +149,7 @@ void LookalikeDecisionOptions::Check() const {
   CHECK_OPTION_GE(backbone_neighbors, 1);
   CHECK_OPTION_INTERVAL(max_rotation_error, 0.0, false, 180.0, true);
   CHECK_OPTION_GE(max_backbone_hops, 0);
+  CHECK_OPTION_GE(min_evidence_inliers, 0);
 }
 
 const char* LookalikeReasonName(const LookalikeReason reason) {
@@ -200,7 +209,9 @@ std::vector<LookalikeDecision> DecideLookalikePairs(
       decision.backbone_hops = Hops(
           adjacency, edge.image1, edge.image2, static_cast<int>(e), &distance);
     }
-    if (decision.in_tree) continue;
+    if (decision.in_tree || edge.num_inliers < options.min_evidence_inliers) {
+      continue;
+    }
     if (decision.rotation_error > options.max_rotation_error) {
       decision.reason = LookalikeReason::kRotationLoop;
     } else if (options.max_backbone_hops > 0 &&

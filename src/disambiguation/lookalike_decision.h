@@ -12,6 +12,10 @@ namespace colmap_gcn {
 // A verified pair as the decision sees it: the images as indices 0..n-1, its
 // inlier count and, where one could be recovered, the measured relative
 // rotation R = R2 * R1^T (camera 2's orientation relative to camera 1's).
+// A pair's geometry may allow more than one rotation (a homography's
+// decompositions, E against H): `rotation` is the one the tree may chain
+// (has_rotation: well determined), `alternatives` the others; the loop test
+// rejects a pair only when none of them agrees with the chained rotation.
 struct ViewGraphEdge {
   image_pair_t pair_id = kInvalidImagePairId;  // orders ties
   int image1 = -1;
@@ -24,6 +28,7 @@ struct ViewGraphEdge {
   int strength = 0;
   bool has_rotation = false;
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  std::vector<Eigen::Matrix3d> alternatives;
 };
 
 // How the look-alike filter decides (docs/lookalike.md). One parameter set
@@ -37,6 +42,10 @@ struct LookalikeDecisionOptions {
   // rotation chained along the backbone's maximum spanning tree is a
   // look-alike (degrees).
   double max_rotation_error = 30.0;
+
+  // A pair with fewer inliers is never rejected: its rotations are too often
+  // ill-determined (inliers on a small patch; docs/lookalike.md).
+  int min_evidence_inliers = 60;
 
   // A pair whose images are more than this many backbone hops apart
   // (without the pair itself) is a look-alike; 0 turns this test off.
@@ -57,8 +66,9 @@ struct LookalikeDecision {
   LookalikeReason reason = LookalikeReason::kKept;
   bool in_backbone = false;
   bool in_tree = false;
-  // Degrees between the measured and the chained rotation; -1 when either is
-  // missing (no rotation, or the images in different backbone components).
+  // Degrees between the chained rotation and the closest of the pair's
+  // measured ones; -1 when either is missing (no rotation, or the images in
+  // different trees).
   double rotation_error = -1;
   // Backbone hops between the images without this edge; -1 if unconnected.
   int backbone_hops = -1;

@@ -6,6 +6,9 @@
 #include <set>
 #include <sstream>
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
 #include "disambiguation/relative_pose.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"
@@ -51,31 +54,68 @@ void InlierRays(const VerifiedTwoViewGeometry& pair,
   rays2->conservativeResize(2, used);
 }
 
-// The measured relative rotation of a pair: from E when COLMAP verified it
-// calibrated with trusted focal lengths (use_E), otherwise from F and the
-// cameras' (possibly self-calibrated) intrinsics.
-bool MeasureRotation(const VerifiedTwoViewGeometry& pair,
-                     const KeypointPositions& keypoints1,
-                     const KeypointPositions& keypoints2,
-                     const PinholeIntrinsics& camera1,
-                     const PinholeIntrinsics& camera2,
-                     const bool use_E,
-                     const int max_rays,
-                     Eigen::Matrix3d* rotation) {
-  Eigen::Matrix3d E = pair.E;
-  const bool has_E = pair.config == 2 && E.norm() >= 1e-12;
-  if (!(use_E && has_E)) {
-    if (pair.F.norm() >= 1e-12) {
-      E = camera2.K().transpose() * pair.F * camera1.K();
-    } else if (!has_E) {
-      return false;
-    }
-  }
+// The relative rotations a pair's geometry gives: from E when COLMAP
+// verified it calibrated with trusted focal lengths (use_E), otherwise from
+// F and the cameras' (possibly self-calibrated) intrinsics; and the
+// candidates its homography allows.
+void MeasureRotations(const VerifiedTwoViewGeometry& pair,
+                      const KeypointPositions& keypoints1,
+                      const KeypointPositions& keypoints2,
+                      const PinholeIntrinsics& camera1,
+                      const PinholeIntrinsics& camera2,
+                      const bool use_E,
+                      const int max_rays,
+                      PairRotations* rotations) {
   Eigen::Matrix2Xd rays1;
   Eigen::Matrix2Xd rays2;
   InlierRays(
       pair, keypoints1, keypoints2, camera1, camera2, max_rays, &rays1, &rays2);
-  return RotationFromEssential(E, rays1, rays2, rotation);
+  Eigen::Matrix3d E = pair.E;
+  const bool has_E = pair.config == 2 && E.norm() >= 1e-12;
+  bool has_essential = true;
+  if (!(use_E && has_E)) {
+    if (pair.F.norm() >= 1e-12) {
+      E = camera2.K().transpose() * pair.F * camera1.K();
+    } else if (!has_E) {
+      has_essential = false;
+    }
+  }
+  rotations->has_essential =
+      has_essential &&
+      RotationFromEssential(E, rays1, rays2, &rotations->essential);
+  if (pair.H.norm() >= 1e-12) {
+    const Eigen::Matrix3d H = camera2.K().inverse() * pair.H * camera1.K();
+    rotations->homography = RotationsFromHomography(H, rays1, rays2);
+  }
+}
+
+// Which of a pair's rotations the tree may chain: a planar or panoramic
+// pair's (config 4-6) F does not determine the rotation, its homography
+// does when only one decomposition passes the cheirality test; a general
+// pair's comes from E (or F). Every other rotation the geometry allows is
+// an alternative for the loop test.
+void AssignRotations(const int config,
+                     const PairRotations& rotations,
+                     ViewGraphEdge* edge) {
+  const bool planar = config >= 4 && config <= 6;
+  edge->alternatives.clear();
+  if (planar && rotations.homography.size() == 1) {
+    edge->has_rotation = true;
+    edge->rotation = rotations.homography[0];
+    if (rotations.has_essential) {
+      edge->alternatives.push_back(rotations.essential);
+    }
+    return;
+  }
+  edge->has_rotation = !planar && rotations.has_essential;
+  if (edge->has_rotation) {
+    edge->rotation = rotations.essential;
+  } else if (rotations.has_essential) {
+    edge->alternatives.push_back(rotations.essential);
+  }
+  edge->alternatives.insert(edge->alternatives.end(),
+                            rotations.homography.begin(),
+                            rotations.homography.end());
 }
 
 // Cells of a kCoverageGrid x kCoverageGrid grid over each image that hold an
@@ -165,14 +205,44 @@ void SelfCalibrateCameras(const std::vector<DatabaseImage>& images,
   report->focal_cost_after = result.cost_after;
 }
 
+std::string CsvRotation(const bool has, const Eigen::Matrix3d& R) {
+  if (!has) return ",,,";
+  const Eigen::Quaterniond q(R);
+  std::ostringstream out;
+  out << q.w() << ',' << q.x() << ',' << q.y() << ',' << q.z();
+  return out.str();
+}
+
 std::string CsvLine(const PairFilterEntry& entry) {
   std::ostringstream line;
   line << entry.name1 << ',' << entry.name2 << ',' << entry.num_inliers << ','
        << entry.strength << ',' << entry.decision.rotation_error << ','
        << entry.decision.backbone_hops << ',' << entry.decision.in_backbone
        << ',' << entry.decision.in_tree << ','
-       << LookalikeReasonName(entry.decision.reason) << '\n';
+       << LookalikeReasonName(entry.decision.reason) << ',' << entry.config
+       << ','
+       << CsvRotation(entry.rotations.has_essential, entry.rotations.essential)
+       << ',' << entry.rotations.homography.size();
+  for (size_t i = 0; i < 2; ++i) {
+    line << ','
+         << CsvRotation(i < entry.rotations.homography.size(),
+                        i < entry.rotations.homography.size()
+                            ? entry.rotations.homography[i]
+                            : Eigen::Matrix3d::Identity());
+  }
+  line << '\n';
   return line.str();
+}
+
+// One line per verified pair: its evidence and decision.
+void WritePairsCsv(const PairFilterReport& report, const std::string& path) {
+  std::string csv =
+      "name1,name2,num_inliers,covered_cells,rotation_error,backbone_hops,in_"
+      "backbone,"
+      "in_tree,decision,config,ew,ex,ey,ez,num_h,h1w,h1x,h1y,h1z,h2w,h2x,h2y,"
+      "h2z\n";
+  for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
+  WriteFileAtomically(path, csv);
 }
 
 }  // namespace
@@ -255,6 +325,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
   }
 
   std::vector<ViewGraphEdge> edges(pairs.size());
+  std::vector<PairRotations> rotations(pairs.size());
   ProgressLogger progress(pairs.size(), "look-alike filter", "pairs");
   ParallelFor(
       0, static_cast<int>(pairs.size()), options.num_threads, [&](int p) {
@@ -269,16 +340,16 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                                      keypoints[edge.image2],
                                      sizes.at(images[edge.image1].camera_id),
                                      sizes.at(images[edge.image2].camera_id));
-        edge.has_rotation =
-            MeasureRotation(pair,
-                            keypoints[edge.image1],
-                            keypoints[edge.image2],
-                            cameras.at(images[edge.image1].camera_id),
-                            cameras.at(images[edge.image2].camera_id),
-                            trusted_focal.at(images[edge.image1].camera_id) &&
-                                trusted_focal.at(images[edge.image2].camera_id),
-                            options.max_rays_per_pair,
-                            &edge.rotation);
+        MeasureRotations(pair,
+                         keypoints[edge.image1],
+                         keypoints[edge.image2],
+                         cameras.at(images[edge.image1].camera_id),
+                         cameras.at(images[edge.image2].camera_id),
+                         trusted_focal.at(images[edge.image1].camera_id) &&
+                             trusted_focal.at(images[edge.image2].camera_id),
+                         options.max_rays_per_pair,
+                         &rotations[p]);
+        AssignRotations(pair.config, rotations[p], &edge);
         progress.Increment();
       });
   progress.Finish();
@@ -291,18 +362,16 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
     entry.name2 = images[edges[p].image2].name;
     entry.num_inliers = edges[p].num_inliers;
     entry.strength = edges[p].strength;
+    entry.config = pairs[p].config;
+    entry.rotations = rotations[p];
     entry.decision = decisions[p];
-    report.num_without_rotation += !edges[p].has_rotation;
+    report.num_without_rotation +=
+        !edges[p].has_rotation && edges[p].alternatives.empty();
     report.num_rejected += decisions[p].Rejected();
     report.entries.push_back(std::move(entry));
   }
   if (!options.pairs_csv_path.empty()) {
-    std::string csv =
-        "name1,name2,num_inliers,covered_cells,rotation_error,backbone_hops,in_"
-        "backbone,"
-        "in_tree,decision\n";
-    for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
-    WriteFileAtomically(options.pairs_csv_path, csv);
+    WritePairsCsv(report, options.pairs_csv_path);
   }
   report.seconds = timer.ElapsedSeconds();
   return report;

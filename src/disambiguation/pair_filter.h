@@ -39,6 +39,15 @@ struct PairFilterOptions {
   void Check() const;
 };
 
+// The relative rotations (x2 = R x1 + t) a verified pair's geometry gives.
+struct PairRotations {
+  // From E (or F and the intrinsics), disambiguated by cheirality.
+  bool has_essential = false;
+  Eigen::Matrix3d essential = Eigen::Matrix3d::Identity();
+  // The decompositions of its homography that pass the cheirality test.
+  std::vector<Eigen::Matrix3d> homography;
+};
+
 // One verified pair with its decision.
 struct PairFilterEntry {
   image_pair_t pair_id = kInvalidImagePairId;
@@ -46,6 +55,8 @@ struct PairFilterEntry {
   std::string name2;
   int num_inliers = 0;
   int strength = 0;  // ViewGraphEdge::strength
+  int config = 0;    // COLMAP's two-view configuration
+  PairRotations rotations;
   LookalikeDecision decision;
 };
 

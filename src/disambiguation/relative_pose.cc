@@ -123,6 +123,76 @@ bool RotationFromEssential(const Eigen::Matrix3d& E,
   return true;
 }
 
+std::vector<Eigen::Matrix3d> RotationsFromHomography(
+    const Eigen::Matrix3d& H,
+    const Eigen::Matrix2Xd& rays1,
+    const Eigen::Matrix2Xd& rays2) {
+  std::vector<Eigen::Matrix3d> rotations;
+  if (!H.allFinite() || H.norm() < 1e-12 || rays1.cols() == 0) {
+    return rotations;
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(
+      H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix3d U = svd.matrixU();
+  const Eigen::Matrix3d V = svd.matrixV();
+  const Eigen::Vector3d d = svd.singularValues() / svd.singularValues()(1);
+  const double s = U.determinant() * V.determinant();
+  if (!(d(2) > 1e-9)) return rotations;  // rank < 3
+  if (d(0) - d(2) < 1e-9) {
+    // A pure rotation: H = R up to scale.
+    rotations.push_back(s * U * V.transpose());
+    return rotations;
+  }
+  const double d1 = d(0);
+  const double d3 = d(2);
+  const double x1 =
+      std::sqrt(std::max(0.0, (d1 * d1 - 1) / (d1 * d1 - d3 * d3)));
+  const double x3 =
+      std::sqrt(std::max(0.0, (1 - d3 * d3) / (d1 * d1 - d3 * d3)));
+  const double e1[4] = {x1, x1, -x1, -x1};
+  const double e3[4] = {x3, -x3, x3, -x3};
+  // d' = +1: rotation about the second axis by theta.
+  const double sin_theta =
+      std::sqrt(std::max(0.0, (d1 * d1 - 1) * (1 - d3 * d3))) / (d1 + d3);
+  const double cos_theta = (1 + d1 * d3) / (d1 + d3);
+  const double sin_thetas[4] = {sin_theta, -sin_theta, -sin_theta, sin_theta};
+  // d' = -1: a reflection-like rotation by phi.
+  const double sin_phi =
+      std::sqrt(std::max(0.0, (d1 * d1 - 1) * (1 - d3 * d3))) / (d1 - d3);
+  const double cos_phi = (d1 * d3 - 1) / (d1 - d3);
+  const double sin_phis[4] = {sin_phi, -sin_phi, -sin_phi, sin_phi};
+  std::vector<Eigen::Matrix3d> candidates_R;
+  std::vector<Eigen::Vector3d> candidates_t;
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Matrix3d Rp;
+    Rp << cos_theta, 0, -sin_thetas[i], 0, 1, 0, sin_thetas[i], 0, cos_theta;
+    candidates_R.push_back(s * U * Rp * V.transpose());
+    candidates_t.push_back(U * Eigen::Vector3d(e1[i], 0, -e3[i]) * (d1 - d3));
+  }
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Matrix3d Rp;
+    Rp << cos_phi, 0, sin_phis[i], 0, -1, 0, sin_phis[i], 0, -cos_phi;
+    candidates_R.push_back(s * U * Rp * V.transpose());
+    candidates_t.push_back(U * Eigen::Vector3d(e1[i], 0, e3[i]) * (d1 + d3));
+  }
+  std::vector<int> counts(candidates_R.size(), 0);
+  int best_count = 0;
+  for (size_t c = 0; c < candidates_R.size(); ++c) {
+    for (Eigen::Index i = 0; i < rays1.cols(); ++i) {
+      counts[c] += InFrontOfBoth(
+          candidates_R[c], candidates_t[c], rays1.col(i), rays2.col(i));
+    }
+    best_count = std::max(best_count, counts[c]);
+  }
+  if (2 * best_count < rays1.cols()) return rotations;
+  for (size_t c = 0; c < candidates_R.size(); ++c) {
+    if (10 * counts[c] >= 9 * best_count) {
+      rotations.push_back(candidates_R[c]);
+    }
+  }
+  return rotations;
+}
+
 double RotationAngleDegrees(const Eigen::Matrix3d& rotation) {
   const double c = std::clamp(0.5 * (rotation.trace() - 1.0), -1.0, 1.0);
   return std::acos(c) * 180.0 / M_PI;

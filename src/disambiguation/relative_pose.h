@@ -33,6 +33,17 @@ bool RotationFromEssential(const Eigen::Matrix3d& E,
                            const Eigen::Matrix2Xd& rays2,
                            Eigen::Matrix3d* rotation);
 
+// The rotations R of x2 = R x1 + t that a homography between normalised
+// coordinates (x2 ~ H x1, H = R + t n' / d for a plane n' X = d) allows:
+// its decompositions (the SVD method of Faugeras & Lustman) that put at
+// least half of the rays in front of both cameras and at least 90 % as many
+// as the best one; one rotation when H is a pure rotation (equal singular
+// values). Empty when H is degenerate or no decomposition qualifies.
+std::vector<Eigen::Matrix3d> RotationsFromHomography(
+    const Eigen::Matrix3d& H,
+    const Eigen::Matrix2Xd& rays1,
+    const Eigen::Matrix2Xd& rays2);
+
 // Angle of a rotation matrix in degrees, in [0, 180].
 double RotationAngleDegrees(const Eigen::Matrix3d& rotation);
 

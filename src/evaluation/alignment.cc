@@ -4,6 +4,9 @@
 #include <cmath>
 #include <map>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+
 #include "util/option_check.h"
 
 namespace colmap_gcn {
@@ -34,6 +37,50 @@ double RotationAngleDeg(const Eigen::Matrix3d& rotation_a,
   const double cos_angle =
       std::clamp((relative.trace() - 1.0) / 2.0, -1.0, 1.0);
   return std::acos(cos_angle) * 180.0 / M_PI;
+}
+
+double RingCoverage(const std::vector<Eigen::Vector3d>& centres) {
+  if (centres.size() < 3) return -1;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& c : centres) mean += c;
+  mean /= static_cast<double>(centres.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& c : centres) {
+    scatter += (c - mean) * (c - mean).transpose();
+  }
+  // Eigenvalues ascending: the last two columns span the ring's plane.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  if (!(solver.eigenvalues()(2) > 0)) return -1;
+  const Eigen::Vector3d u = solver.eigenvectors().col(2);
+  const Eigen::Vector3d v = solver.eigenvectors().col(1);
+  // The circle through them in that plane (algebraic least squares:
+  // x^2 + y^2 + D x + E y + F = 0); its centre, not the centroid, so that
+  // an arc covers what it spans.
+  const int n = static_cast<int>(centres.size());
+  Eigen::MatrixXd A(n, 3);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = centres[i] - mean;
+    A.row(i) << d.dot(u), d.dot(v), 1.0;
+    b(i) = -(d.dot(u) * d.dot(u) + d.dot(v) * d.dot(v));
+  }
+  const Eigen::Vector3d circle = A.colPivHouseholderQr().solve(b);
+  Eigen::Vector2d centre = -0.5 * circle.head<2>();
+  if (!centre.allFinite()) centre.setZero();
+  std::vector<double> azimuths;
+  for (const Eigen::Vector3d& c : centres) {
+    const Eigen::Vector2d d =
+        Eigen::Vector2d((c - mean).dot(u), (c - mean).dot(v)) - centre;
+    if (d.x() == 0 && d.y() == 0) continue;
+    azimuths.push_back(std::atan2(d.y(), d.x()));
+  }
+  if (azimuths.size() < 3) return -1;
+  std::sort(azimuths.begin(), azimuths.end());
+  double largest_gap = azimuths.front() + 2 * M_PI - azimuths.back();
+  for (size_t i = 1; i < azimuths.size(); ++i) {
+    largest_gap = std::max(largest_gap, azimuths[i] - azimuths[i - 1]);
+  }
+  return 1.0 - largest_gap / (2 * M_PI);
 }
 
 double CameraExtent(const Reconstruction& reconstruction) {
@@ -72,6 +119,12 @@ PoseErrors ComputePoseErrors(const Reconstruction& model,
     src.push_back(images.first->ProjectionCenter());
     dst.push_back(images.second->ProjectionCenter());
   }
+  errors.ring_coverage = RingCoverage(src);
+  std::vector<Eigen::Vector3d> gt_centres;
+  for (const auto& [image_id, gt_image] : ground_truth.images) {
+    gt_centres.push_back(gt_image.ProjectionCenter());
+  }
+  errors.gt_ring_coverage = RingCoverage(gt_centres);
   errors.aligned = EstimateSimilarity(src, dst, &errors.model_to_gt);
   if (!errors.aligned || errors.scene_extent <= 0) {
     errors.aligned = false;

@@ -40,11 +40,22 @@ struct PoseErrors {
   std::vector<double> rotation_errors_deg;
   std::vector<double> position_errors;
   Similarity3d model_to_gt;
+  // RingCoverage of the evaluated images' centres in the model and of every
+  // ground-truth image's: for cameras orbiting an object (ground truth near
+  // 1), a model folded onto one side covers far less of the circle.
+  double ring_coverage = -1;
+  double gt_ring_coverage = -1;
 };
 
 PoseErrors ComputePoseErrors(const Reconstruction& model,
                              const Reconstruction& ground_truth,
                              const PoseErrorOptions& options);
+
+// The fraction of a circle camera centres cover around their centroid: the
+// centres projected onto their best-fit plane (the two largest principal
+// directions), one minus the largest angular gap between neighbouring
+// centres over 360 degrees. -1 for fewer than 3 centres or no spread.
+double RingCoverage(const std::vector<Eigen::Vector3d>& centres);
 
 // Largest distance between two camera centres of a model.
 double CameraExtent(const Reconstruction& reconstruction);

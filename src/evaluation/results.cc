@@ -37,6 +37,8 @@ Json SfmMetricsToJson(const SfmMetrics& metrics) {
     errors["fraction_rotation_ok"] = pose.fraction_rotation_ok;
     errors["fraction_position_ok"] = pose.fraction_position_ok;
     errors["fraction_accurate"] = pose.fraction_accurate;
+    errors["ring_coverage"] = pose.ring_coverage;
+    errors["gt_ring_coverage"] = pose.gt_ring_coverage;
     Json per_image = Json::array();
     for (size_t i = 0; i < pose.names.size(); ++i) {
       Json image = Json::object();

@@ -41,7 +41,8 @@ void AddGcnMatchingOptions(OptionManager* manager,
   manager->AddDefaultOption("GcnMatching.filter_lookalikes",
                             &options->filter_lookalikes,
                             "hide look-alike (duplicate structure) pairs from "
-                            "the mapper after matching (docs/lookalike.md)");
+                            "the mapper after matching (docs/lookalike.md); "
+                            "0: off");
   manager->AddDefaultOption("SiftMatching.min_num_inliers",
                             &matching.min_num_inliers,
                             "COLMAP's verification threshold; also what a "

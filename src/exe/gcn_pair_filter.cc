@@ -36,6 +36,9 @@ int RunGcnPairFilter(int argc, char** argv) {
   manager.AddDefaultOption("PairFilter.max_rotation_error",
                            &options.decision.max_rotation_error,
                            "degrees");
+  manager.AddDefaultOption("PairFilter.min_evidence_inliers",
+                           &options.decision.min_evidence_inliers,
+                           "pairs with fewer inliers are never rejected");
   manager.AddDefaultOption("PairFilter.max_backbone_hops",
                            &options.decision.max_backbone_hops,
                            "0: off");

@@ -85,7 +85,7 @@ TwoViewGeometryStore::ReadVerifiedTwoViewGeometries(
     const size_t min_num_inliers) const {
   SqliteStatement stmt(Handle(),
                        Path(),
-                       "SELECT pair_id, rows, cols, data, config, F, E FROM "
+                       "SELECT pair_id, rows, cols, data, config, F, E, H FROM "
                        "two_view_geometries ORDER BY pair_id");
   std::vector<VerifiedTwoViewGeometry> pairs;
   while (stmt.Step()) {
@@ -107,6 +107,7 @@ TwoViewGeometryStore::ReadVerifiedTwoViewGeometries(
         stmt, 1, "two_view_geometries", static_cast<int64_t>(pair.pair_id));
     pair.F = ReadMatrix3Blob(stmt, 5);
     pair.E = ReadMatrix3Blob(stmt, 6);
+    pair.H = ReadMatrix3Blob(stmt, 7);
     pairs.push_back(std::move(pair));
   }
   return pairs;

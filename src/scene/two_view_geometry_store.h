@@ -19,6 +19,7 @@ struct VerifiedTwoViewGeometry {
   Eigen::Matrix<uint32_t, Eigen::Dynamic, 2, Eigen::RowMajor> inliers;
   Eigen::Matrix3d F = Eigen::Matrix3d::Zero();  // x2' F x1 = 0
   Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();  // x2 ~ H x1
 };
 
 // A pair whose two_view_geometries row was moved aside, with why.

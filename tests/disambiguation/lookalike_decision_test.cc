@@ -135,6 +135,69 @@ TEST(LookalikeDecision, PairsWithoutARotationAreKept) {
   }
 }
 
+TEST(LookalikeDecision, APairIsKeptWhenAnyRotationItsGeometryAllowsAgrees) {
+  // A twin pair's measured rotation is 180 degrees off; an alternative (a
+  // homography's second decomposition) that agrees with the ring saves it,
+  // alternatives that do not agree do not.
+  RingGraph graph = MakeRing(24, 3, /*twins=*/true, 6);
+  const Eigen::Matrix3d flip =
+      Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (!graph.lookalike[e]) continue;
+    ViewGraphEdge& edge = graph.edges[e];
+    edge.alternatives.push_back(edge.rotation * RotZ(20.0));
+    if (edge.image1 % 2 == 0) {
+      edge.alternatives.push_back(flip * edge.rotation);  // the true one
+    }
+  }
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, LookalikeDecisionOptions());
+  for (size_t e = 0; e < decisions.size(); ++e) {
+    const bool saved = graph.edges[e].image1 % 2 == 0;
+    EXPECT_EQ(decisions[e].Rejected(), graph.lookalike[e] && !saved)
+        << graph.edges[e].image1 << "-" << graph.edges[e].image2;
+  }
+}
+
+TEST(LookalikeDecision, PairsWithOnlyAlternativesStayOutOfTheTree) {
+  RingGraph graph = MakeRing(24, 3, /*twins=*/true, 7);
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (!graph.lookalike[e]) continue;
+    // Ambiguous twins: no rotation to chain, only the (wrong) candidates.
+    ViewGraphEdge& edge = graph.edges[e];
+    edge.alternatives = {edge.rotation, edge.rotation * RotZ(10.0)};
+    edge.has_rotation = false;
+    edge.num_inliers = 1000;  // stronger than every real pair
+  }
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, LookalikeDecisionOptions());
+  for (size_t e = 0; e < decisions.size(); ++e) {
+    EXPECT_EQ(decisions[e].Rejected(), graph.lookalike[e]);
+    if (graph.lookalike[e]) {
+      EXPECT_FALSE(decisions[e].in_tree);
+    }
+  }
+}
+
+TEST(LookalikeDecision, PairsWithFewInliersAreNeverRejected) {
+  RingGraph graph = MakeRing(24, 3, /*twins=*/true, 8);
+  LookalikeDecisionOptions options;
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (graph.lookalike[e]) {
+      graph.edges[e].num_inliers = options.min_evidence_inliers - 1;
+    }
+  }
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, options);
+  for (size_t e = 0; e < decisions.size(); ++e) {
+    EXPECT_FALSE(decisions[e].Rejected());
+    // The evidence is still reported.
+    if (graph.lookalike[e]) {
+      EXPECT_GT(decisions[e].rotation_error, 150.0);
+    }
+  }
+}
+
 TEST(LookalikeDecision, ContextTestRejectsPairsFarApartInTheBackbone) {
   const RingGraph graph = MakeRing(24, 3, /*twins=*/true, 5);
   LookalikeDecisionOptions options;
@@ -156,6 +219,9 @@ TEST(LookalikeDecision, BadOptionsAreNamed) {
   EXPECT_THROW(options.Check(), std::exception);
   options = LookalikeDecisionOptions();
   options.max_rotation_error = 0;
+  EXPECT_THROW(options.Check(), std::exception);
+  options = LookalikeDecisionOptions();
+  options.min_evidence_inliers = -1;
   EXPECT_THROW(options.Check(), std::exception);
 }
 
@@ -184,6 +250,48 @@ TEST(RelativePose, RotationFromEssentialPicksThePointsInFront) {
   EXPECT_LT(RotationAngleDegrees(estimated.transpose() * R), 1e-6);
   EXPECT_FALSE(
       RotationFromEssential(Eigen::Matrix3d::Zero(), rays1, rays2, &estimated));
+}
+
+// Points on the plane n' X = d seen by two cameras (x2 = R x1 + t): the
+// homography between normalised coordinates is R + t n' / d.
+TEST(RelativePose, RotationsFromHomographyIncludeTheTrueOne) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.5, Eigen::Vector3d(0.1, 1.0, 0.3).normalized())
+          .toRotationMatrix();
+  const Eigen::Vector3d t(-1.5, 0.2, 0.4);
+  const Eigen::Vector3d n = Eigen::Vector3d(0.2, -0.1, 1.0).normalized();
+  const double d = 5.0;
+  Eigen::Matrix2Xd rays1(2, 60);
+  Eigen::Matrix2Xd rays2(2, 60);
+  for (int i = 0; i < 60; ++i) {
+    // On the plane: pick x, y and solve for z.
+    const double x = 2 * uniform(rng);
+    const double y = 2 * uniform(rng);
+    const Eigen::Vector3d X(x, y, (d - n.x() * x - n.y() * y) / n.z());
+    rays1.col(i) = X.hnormalized();
+    rays2.col(i) = (R * X + t).hnormalized();
+  }
+  const Eigen::Matrix3d H = R + t * n.transpose() / d;
+  for (const double scale : {1.0, -2.5}) {
+    const std::vector<Eigen::Matrix3d> rotations =
+        RotationsFromHomography(scale * H, rays1, rays2);
+    ASSERT_FALSE(rotations.empty());
+    EXPECT_LE(rotations.size(), 2u);
+    double best = 180;
+    for (const Eigen::Matrix3d& rotation : rotations) {
+      best = std::min(best, RotationAngleDegrees(rotation.transpose() * R));
+    }
+    EXPECT_LT(best, 1e-6) << scale;
+  }
+  // A pure rotation gives exactly that rotation.
+  const std::vector<Eigen::Matrix3d> pure =
+      RotationsFromHomography(3.0 * R, rays1, rays1);
+  ASSERT_EQ(pure.size(), 1u);
+  EXPECT_LT(RotationAngleDegrees(pure[0].transpose() * R), 1e-6);
+  EXPECT_TRUE(
+      RotationsFromHomography(Eigen::Matrix3d::Zero(), rays1, rays2).empty());
 }
 
 }  // namespace

@@ -106,6 +106,24 @@ TEST(PoseErrors, FoldedModelShowsLargeErrors) {
   }
   EXPECT_GE(num_large_rotation, 4u);
   EXPECT_LT(errors.fraction_accurate, 0.5);
+  // The ring covers all of its circle; the folded one half of it.
+  EXPECT_NEAR(errors.gt_ring_coverage, 15.0 / 16.0, 0.01);
+  EXPECT_LT(errors.ring_coverage, 0.6);
+}
+
+TEST(RingCoverage, MeasuresTheLargestGap) {
+  std::vector<Eigen::Vector3d> centres;
+  // Three quarters of a tilted circle, every 10 degrees.
+  const Eigen::Matrix3d tilt =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  for (int degrees = 0; degrees <= 270; degrees += 10) {
+    const double a = degrees * M_PI / 180.0;
+    centres.push_back(tilt * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0) +
+                      Eigen::Vector3d(5, -2, 1));
+  }
+  EXPECT_NEAR(RingCoverage(centres), 0.75, 1e-9);
+  centres.resize(2);
+  EXPECT_EQ(RingCoverage(centres), -1);
 }
 
 TEST(RotationAngleDeg, KnownAngle) {
