@@ -352,7 +352,6 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
         AssignRotations(pair.config, rotations[p], &edge);
         progress.Increment();
       });
-  progress.Finish();
   const std::vector<LookalikeDecision> decisions = DecideLookalikePairs(
       static_cast<int>(images.size()), edges, options.decision);
   for (size_t p = 0; p < pairs.size(); ++p) {
