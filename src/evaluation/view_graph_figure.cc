@@ -23,6 +23,18 @@ ImageNamePair Ordered(const ImageNamePair& pair) {
                                   : ImageNamePair(pair.second, pair.first);
 }
 
+// Appends the pair's image names, ordered; a pair of an unknown id is
+// skipped.
+void AppendNamedPair(const std::map<image_t, std::string>& names,
+                     const image_pair_t pair_id,
+                     std::vector<ImageNamePair>* pairs) {
+  const ImagePair ids = PairIdToImagePair(pair_id);
+  const auto a = names.find(ids.first);
+  const auto b = names.find(ids.second);
+  if (a == names.end() || b == names.end()) return;
+  pairs->push_back(Ordered({a->second, b->second}));
+}
+
 // Index pairs (i < j) of the named pairs whose images are both known.
 std::vector<std::pair<size_t, size_t>> IndexPairs(
     const std::vector<ImageNamePair>& pairs,
@@ -255,11 +267,7 @@ std::vector<ImageNamePair> ReadVerifiedImagePairs(
             info.config, info.num_inliers, min_num_inliers)) {
       continue;
     }
-    const ImagePair pair = PairIdToImagePair(info.pair_id);
-    const auto a = names.find(pair.first);
-    const auto b = names.find(pair.second);
-    if (a == names.end() || b == names.end()) continue;
-    verified.push_back(Ordered({a->second, b->second}));
+    AppendNamedPair(names, info.pair_id, &verified);
   }
   return verified;
 }
@@ -296,11 +304,7 @@ std::vector<ImageNamePair> ReadHiddenImagePairs(
     if (!IsVerifiedTwoViewGeometry(2, pair.num_inliers, min_num_inliers)) {
       continue;
     }
-    const ImagePair ids = PairIdToImagePair(pair.pair_id);
-    const auto a = names.find(ids.first);
-    const auto b = names.find(ids.second);
-    if (a == names.end() || b == names.end()) continue;
-    hidden.push_back(Ordered({a->second, b->second}));
+    AppendNamedPair(names, pair.pair_id, &hidden);
   }
   return hidden;
 }
