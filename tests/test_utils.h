@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "util/logging.h"
@@ -31,6 +32,21 @@ extern const char* const kColmap38Schema;
 // contains expected.
 void ExpectErrorContaining(const std::function<void()>& function,
                            const std::string& expected);
+
+// argv as COLMAP commands see it (argv[0] is the command name), for
+// parsing options in tests.
+class Argv {
+ public:
+  explicit Argv(std::vector<std::string> args) : args_(std::move(args)) {
+    for (auto& arg : args_) pointers_.push_back(arg.data());
+  }
+  int argc() { return static_cast<int>(pointers_.size()); }
+  char** argv() { return pointers_.data(); }
+
+ private:
+  std::vector<std::string> args_;
+  std::vector<char*> pointers_;
+};
 
 // The messages LOG writes while it is registered (with ScopedLogSink), in
 // order, without their prefix.

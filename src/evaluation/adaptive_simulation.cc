@@ -259,25 +259,19 @@ std::vector<NamedPairSetQuality> CompareBaselines(
     lines.push_back({"knn:" + std::to_string(k),
                      evaluate(CreatePairGenerator(knn, database)->AllPairs())});
   }
-  if (options.pairing == "adaptive") {
-    // The same loop under the other stopping rule.
-    GcnMatchingOptions recall = options;
-    recall.pairing = "adaptive_recall";
+  // Another loop in the same simulation, with the same options.
+  const auto simulate_baseline = [&](const std::string& pairing) {
+    GcnMatchingOptions baseline_options = options;
+    baseline_options.pairing = pairing;
     std::unique_ptr<PairGenerator> baseline =
-        CreatePairGenerator(recall, database);
+        CreatePairGenerator(baseline_options, database);
     std::vector<ImagePair> baseline_pairs;
     SimulatePairGenerator(baseline.get(), table, labels, cut, &baseline_pairs);
-    lines.push_back({"adaptive_recall", evaluate(baseline_pairs)});
-  }
-  if (options.pairing != "graphmatch") {
-    GcnMatchingOptions graphmatch = options;
-    graphmatch.pairing = "graphmatch";
-    std::unique_ptr<PairGenerator> baseline =
-        CreatePairGenerator(graphmatch, database);
-    std::vector<ImagePair> baseline_pairs;
-    SimulatePairGenerator(baseline.get(), table, labels, cut, &baseline_pairs);
-    lines.push_back({"graphmatch", evaluate(baseline_pairs)});
-  }
+    lines.push_back({pairing, evaluate(baseline_pairs)});
+  };
+  // The same loop under the other stopping rule.
+  if (options.pairing == "adaptive") simulate_baseline("adaptive_recall");
+  if (options.pairing != "graphmatch") simulate_baseline("graphmatch");
   lines.push_back({"exhaustive", evaluate(AllPairs(table))});
   // The ceiling of a loop that learns from strong verifications only: the
   // labelled matchable pairs among them.

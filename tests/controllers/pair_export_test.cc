@@ -17,12 +17,7 @@ class PairExport : public testing::Test {
  protected:
   void SetUp() override {
     database_path_ = JoinPaths(dir_.Path(), "database.db");
-    std::vector<std::pair<std::string, FeatureDescriptors>> images;
-    for (int i = 0; i < 5; ++i) {
-      images.emplace_back("img" + std::to_string(i) + ".jpg",
-                          test::RandomDescriptors(40, 4, 20 + i));
-    }
-    test::CreateDescriptorDatabase(database_path_, images);
+    test::CreateRandomDescriptorDatabase(database_path_, 5, 40, 4, 20, "img");
   }
 
   std::vector<std::vector<std::string>> Lines(const std::string& path) {

@@ -28,12 +28,7 @@ class PairGeneratorRegistryTest : public testing::Test {
  protected:
   void SetUp() override {
     database_path_ = JoinPaths(dir_.Path(), "database.db");
-    std::vector<std::pair<std::string, FeatureDescriptors>> images;
-    for (int i = 0; i < 6; ++i) {
-      images.emplace_back("image" + std::to_string(i) + ".jpg",
-                          test::RandomDescriptors(200, 8, 20 + i));
-    }
-    test::CreateDescriptorDatabase(database_path_, images);
+    test::CreateRandomDescriptorDatabase(database_path_, 6, 200, 8, 20);
   }
 
   TemporaryDirectory dir_{"colmap_gcn_registry"};

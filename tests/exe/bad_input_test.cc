@@ -35,12 +35,7 @@ class BadInput : public testing::Test {
   void SetUp() override {
     dir_ = std::make_unique<TemporaryDirectory>("colmap_gcn_bad_input");
     database_path_ = JoinPaths(dir_->Path(), "database.db");
-    std::vector<std::pair<std::string, FeatureDescriptors>> images;
-    for (int i = 0; i < 3; ++i) {
-      images.emplace_back("image" + std::to_string(i) + ".jpg",
-                          test::RandomDescriptors(40, 4, 10 + i));
-    }
-    test::CreateDescriptorDatabase(database_path_, images);
+    test::CreateRandomDescriptorDatabase(database_path_, 3, 40, 4, 10);
     database_before_ = ReadTextFile(database_path_);
   }
 

@@ -28,12 +28,7 @@ class Options : public testing::Test {
   void SetUp() override {
     dir_ = std::make_unique<TemporaryDirectory>("colmap_gcn_options");
     database_path_ = Path("database.db");
-    std::vector<std::pair<std::string, FeatureDescriptors>> images;
-    for (int i = 0; i < 4; ++i) {
-      images.emplace_back("image" + std::to_string(i) + ".jpg",
-                          test::RandomDescriptors(40, 4, 30 + i));
-    }
-    test::CreateDescriptorDatabase(database_path_, images);
+    test::CreateRandomDescriptorDatabase(database_path_, 4, 40, 4, 30);
     database_before_ = ReadTextFile(database_path_);
   }
 

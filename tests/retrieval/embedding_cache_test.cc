@@ -17,12 +17,7 @@ class EmbeddingCacheTest : public testing::Test {
  protected:
   void SetUp() override {
     path_ = JoinPaths(dir_.Path(), "db.db");
-    std::vector<std::pair<std::string, FeatureDescriptors>> images;
-    for (int i = 0; i < 6; ++i) {
-      images.emplace_back("img" + std::to_string(i) + ".jpg",
-                          test::RandomDescriptors(200, 5, 40 + i));
-    }
-    test::CreateDescriptorDatabase(path_, images);
+    test::CreateRandomDescriptorDatabase(path_, 6, 200, 5, 40, "img");
     VladOptions options;
     options.num_words = 4;
     options.dim = 3;

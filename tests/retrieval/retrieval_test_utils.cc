@@ -41,6 +41,18 @@ void WriteBlob(sqlite3* db,
   sqlite3_finalize(stmt);
 }
 
+void WriteDescriptorsRow(sqlite3* db,
+                         const image_t image_id,
+                         const FeatureDescriptors& descriptors) {
+  WriteBlob(db,
+            "INSERT INTO descriptors VALUES (?, ?, ?, ?);",
+            image_id,
+            static_cast<int>(descriptors.rows()),
+            static_cast<int>(descriptors.cols()),
+            descriptors.data(),
+            static_cast<int>(descriptors.size()));
+}
+
 }  // namespace
 
 void CreateDescriptorDatabase(
@@ -65,13 +77,7 @@ void CreateDescriptorDatabase(
               2,
               keypoints.data(),
               static_cast<int>(keypoints.size() * sizeof(float)));
-    WriteBlob(db,
-              "INSERT INTO descriptors VALUES (?, ?, ?, ?);",
-              image_id,
-              static_cast<int>(descriptors.rows()),
-              static_cast<int>(descriptors.cols()),
-              descriptors.data(),
-              static_cast<int>(descriptors.size()));
+    WriteDescriptorsRow(db, image_id, descriptors);
   }
   sqlite3_close(db);
 }
@@ -84,13 +90,7 @@ void UpdateDescriptors(const std::string& path,
   const std::string sql =
       "DELETE FROM descriptors WHERE image_id = " + std::to_string(image_id);
   Check(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), db);
-  WriteBlob(db,
-            "INSERT INTO descriptors VALUES (?, ?, ?, ?);",
-            image_id,
-            static_cast<int>(descriptors.rows()),
-            static_cast<int>(descriptors.cols()),
-            descriptors.data(),
-            static_cast<int>(descriptors.size()));
+  WriteDescriptorsRow(db, image_id, descriptors);
   sqlite3_close(db);
 }
 
@@ -110,6 +110,20 @@ FeatureDescriptors RandomDescriptors(int rows, int num_modes, uint32_t seed) {
     }
   }
   return descriptors;
+}
+
+void CreateRandomDescriptorDatabase(const std::string& path,
+                                    const int num_images,
+                                    const int rows,
+                                    const int num_modes,
+                                    const uint32_t first_seed,
+                                    const std::string& prefix) {
+  std::vector<std::pair<std::string, FeatureDescriptors>> images;
+  for (int i = 0; i < num_images; ++i) {
+    images.emplace_back(prefix + std::to_string(i) + ".jpg",
+                        RandomDescriptors(rows, num_modes, first_seed + i));
+  }
+  CreateDescriptorDatabase(path, images);
 }
 
 }  // namespace test

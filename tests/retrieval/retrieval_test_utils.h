@@ -24,5 +24,14 @@ void UpdateDescriptors(const std::string& path,
 // num_modes prototypes (so k-means has something to find).
 FeatureDescriptors RandomDescriptors(int rows, int num_modes, uint32_t seed);
 
+// A database of num_images images "<prefix><i>.jpg" whose descriptors are
+// RandomDescriptors(rows, num_modes, first_seed + i).
+void CreateRandomDescriptorDatabase(const std::string& path,
+                                    int num_images,
+                                    int rows,
+                                    int num_modes,
+                                    uint32_t first_seed,
+                                    const std::string& prefix = "image");
+
 }  // namespace test
 }  // namespace colmap_gcn

@@ -55,6 +55,17 @@ cv::Mat MakeTexture(const int width, const int height, const uint32_t seed) {
   return image;
 }
 
+// Runs the SQL on an open connection; on failure closes it and throws.
+void ExecOrThrow(sqlite3* db, const std::string& sql) {
+  char* error = nullptr;
+  if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string message = error != nullptr ? error : "?";
+    sqlite3_free(error);
+    sqlite3_close(db);
+    ThrowError("test: SQL failed: ", message);
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> WriteOverlappingTestImages(
@@ -142,16 +153,8 @@ void ExecuteSql(const std::string& database_path, const std::string& sql) {
     sqlite3_close(db);
     ThrowError("test: cannot open ", database_path);
   }
-  char* error = nullptr;
   // Test databases need no durability; skipping fsync keeps setup fast.
-  const std::string all_sql = "PRAGMA synchronous=OFF;" + sql;
-  if (sqlite3_exec(db, all_sql.c_str(), nullptr, nullptr, &error) !=
-      SQLITE_OK) {
-    const std::string message = error != nullptr ? error : "?";
-    sqlite3_free(error);
-    sqlite3_close(db);
-    ThrowError("test: SQL failed: ", message);
-  }
+  ExecOrThrow(db, "PRAGMA synchronous=OFF;" + sql);
   sqlite3_close(db);
 }
 
@@ -164,16 +167,8 @@ void LeaveCommittedDataInWal(const std::string& database_path,
     sqlite3_close(db);
     ThrowError("test: cannot open ", database_path);
   }
-  const std::string all_sql =
-      "PRAGMA journal_mode=WAL; PRAGMA wal_autocheckpoint=0;" + sql;
-  char* error = nullptr;
-  if (sqlite3_exec(db, all_sql.c_str(), nullptr, nullptr, &error) !=
-      SQLITE_OK) {
-    const std::string message = error != nullptr ? error : "?";
-    sqlite3_free(error);
-    sqlite3_close(db);
-    ThrowError("test: SQL failed: ", message);
-  }
+  ExecOrThrow(db,
+              "PRAGMA journal_mode=WAL; PRAGMA wal_autocheckpoint=0;" + sql);
   for (const std::string suffix : {"", "-wal", "-shm"}) {
     fs::copy_file(database_path + suffix,
                   crashed_path + suffix,

@@ -2,24 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "test_utils.h"
 #include "util/error.h"
 
 namespace colmap_gcn {
 namespace {
 
-// argv as COLMAP commands see it: argv[0] is the command name.
-class Argv {
- public:
-  explicit Argv(std::vector<std::string> args) : args_(std::move(args)) {
-    for (auto& arg : args_) pointers_.push_back(arg.data());
-  }
-  int argc() { return static_cast<int>(pointers_.size()); }
-  char** argv() { return pointers_.data(); }
-
- private:
-  std::vector<std::string> args_;
-  std::vector<char*> pointers_;
-};
+using test::Argv;
 
 TEST(OptionManager, ParsesRequiredDefaultAndPassThrough) {
   std::string database_path;

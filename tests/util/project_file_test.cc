@@ -17,18 +17,7 @@ std::string WriteFile(const std::string& name, const std::string& text) {
   return path;
 }
 
-class Argv {
- public:
-  explicit Argv(std::vector<std::string> args) : args_(std::move(args)) {
-    for (auto& arg : args_) pointers_.push_back(arg.data());
-  }
-  int argc() { return static_cast<int>(pointers_.size()); }
-  char** argv() { return pointers_.data(); }
-
- private:
-  std::vector<std::string> args_;
-  std::vector<char*> pointers_;
-};
+using test::Argv;
 
 TEST(ProjectFile, ReadsColmapLayout) {
   const std::string path = WriteFile("layout.ini",
