@@ -129,6 +129,9 @@ int64_t QuerySqlInt(const std::string& database_path, const std::string& sql) {
     sqlite3_close(db);
     ThrowError("test: cannot open ", database_path);
   }
+  // Tests poll databases that gcn_matcher or COLMAP are writing: wait for
+  // the writer's lock as COLMAP's own readers do instead of failing busy.
+  sqlite3_busy_timeout(db, 30000);
   sqlite3_stmt* stmt = nullptr;
   int64_t value = 0;
   if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt, nullptr) != SQLITE_OK) {
@@ -136,8 +139,14 @@ int64_t QuerySqlInt(const std::string& database_path, const std::string& sql) {
     sqlite3_close(db);
     ThrowError("test: bad SQL '", sql, "': ", message);
   }
-  if (sqlite3_step(stmt) == SQLITE_ROW) {
+  const int step = sqlite3_step(stmt);
+  if (step == SQLITE_ROW) {
     value = sqlite3_column_int64(stmt, 0);
+  } else if (step != SQLITE_DONE) {
+    const std::string message = sqlite3_errmsg(db);
+    sqlite3_finalize(stmt);
+    sqlite3_close(db);
+    ThrowError("test: cannot run '", sql, "': ", message);
   }
   sqlite3_finalize(stmt);
   sqlite3_close(db);
