@@ -121,10 +121,17 @@ double SteadySeconds() {
 }
 
 std::string FormatRate(const double rate, const std::string& unit) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof(buffer), rate < 10.0 ? "%.1f" : "%.0f", rate);
   // A described unit ("images with 3 strong partners") rates by its noun.
   const std::string noun = unit.substr(0, unit.find(' '));
+  if (rate < 0.1) {
+    // Slow units (scenes, methods) read as time per unit: "0.0 methods/s"
+    // says nothing. Units are plural nouns; their singular drops the "s".
+    std::string singular = noun.empty() ? "item" : noun;
+    if (singular.size() > 1 && singular.back() == 's') singular.pop_back();
+    return ProgressLogger::FormatDuration(1.0 / rate) + "/" + singular;
+  }
+  char buffer[48];
+  std::snprintf(buffer, sizeof(buffer), rate < 10.0 ? "%.1f" : "%.0f", rate);
   return std::string(buffer) + (noun.empty() ? "/s" : " " + noun + "/s");
 }
 

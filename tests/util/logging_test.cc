@@ -86,6 +86,11 @@ TEST_F(Logging, ProgressLineFormat) {
   EXPECT_EQ(
       ProgressLogger::FormatFinalLine("embedding", "images", 24, 24, 7.74),
       "embedding: 24/24 images in 7.7 s (3.1 images/s)");
+  // Under a tenth of a unit per second: time per unit instead of "0.0/s".
+  EXPECT_EQ(ProgressLogger::FormatLine("scene", "methods", 2, 10, 34.0),
+            "scene: 2/10 methods (20 %), 17 s/method, ETA 2 min 16 s");
+  EXPECT_EQ(ProgressLogger::FormatFinalLine("benchmark", "", 3, 3, 600.0),
+            "benchmark: 3/3 in 10 min 00 s (3 min 20 s/item)");
 }
 
 TEST_F(Logging, ProgressDurationFormat) {
