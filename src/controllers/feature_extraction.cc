@@ -104,11 +104,15 @@ FeatureExtractionSummary ExtractFeatures(
   }
   summary.seconds = timer.ElapsedSeconds();
   if (options.replace_database) {
+    // Our check above read it: its empty side files must not stay behind
+    // under the scratch name once the database is renamed.
+    RemoveEmptySqliteSideFiles(output_path);
     std::error_code ec;
     std::filesystem::rename(output_path, database_path, ec);
     if (ec) ThrowError("cannot rename ", output_path, ": ", ec.message());
   }
   summary.num_images = Database(database_path).NumImages();
+  RemoveEmptySqliteSideFiles(database_path);
   if (summary.num_images < static_cast<size_t>(options.min_num_images)) {
     ThrowError("colmap feature_extractor read ",
                summary.num_images,

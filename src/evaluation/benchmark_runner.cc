@@ -277,6 +277,9 @@ SceneResult BenchmarkRunner::RunScene(const DatasetSpec& spec) {
   }
   method_progress.Update(methods_.size());
   WritePrecisionRecallFigure(options_.output_path, methods_, &result);
+  // Every method read base.db: leave the scene folder without the empty
+  // "-wal"/"-shm" those reads leave beside it.
+  RemoveEmptySqliteSideFiles(scene.base_db);
   return result;
 }
 

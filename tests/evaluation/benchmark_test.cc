@@ -112,6 +112,14 @@ TEST_F(GcnBenchmarkEndToEnd, PrintsAndWritesAllTables) {
   EXPECT_TRUE(ExistsFile(JoinPaths(Out(), "results.csv")));
   EXPECT_TRUE(ExistsFile(JoinPaths(
       Out(), std::string("figures/") + kScene + "/exhaustive_view_graph.png")));
+  // The scene folder holds no empty SQLite side files of the benchmark's
+  // reads, neither beside base.db nor under its extraction's scratch name.
+  for (const std::string db : {"base.db", "base.db.partial"}) {
+    for (const std::string suffix : {"-wal", "-shm"}) {
+      EXPECT_FALSE(ExistsFile(JoinPaths(SceneDir(), db + suffix)))
+          << db + suffix;
+    }
+  }
 }
 
 TEST_F(GcnBenchmarkEndToEnd, NumbersMatchModelAnalyzerAndSql) {
