@@ -266,7 +266,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
   std::map<camera_t, PinholeIntrinsics> cameras;
   std::map<camera_t, Eigen::Vector2d> sizes;
   std::map<camera_t, bool> trusted_focal;
-  for (const DatabaseCamera& camera : database.ReadCameras()) {
+  for (const DatabaseCamera& camera : database.ReadAllCameras()) {
     cameras[camera.camera_id] = IntrinsicsOfCamera(camera);
     trusted_focal[camera.camera_id] =
         camera.has_prior_focal_length || !options.self_calibrate_focal;

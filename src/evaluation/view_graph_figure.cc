@@ -277,11 +277,11 @@ MatchedViewGraph ReadMatchedViewGraph(const std::string& database_path,
                                       const size_t min_num_inliers) {
   MatchedViewGraph graph;
   {
-    const Database database(database_path);
+    const TwoViewGeometryStore database(database_path);
     graph.image_names = ReadImageNamesSorted(database);
     graph.verified = ReadVerifiedImagePairs(database, min_num_inliers);
+    graph.hidden = ReadHiddenImagePairs(database, min_num_inliers);
   }
-  graph.hidden = ReadHiddenImagePairs(database_path, min_num_inliers);
   // A reader of a WAL database leaves an empty "-wal" and "-shm" beside it.
   RemoveEmptySqliteSideFiles(database_path);
   if (!pairs_path.empty() && ExistsFile(pairs_path)) {
@@ -292,7 +292,12 @@ MatchedViewGraph ReadMatchedViewGraph(const std::string& database_path,
 
 std::vector<ImageNamePair> ReadHiddenImagePairs(
     const std::string& database_path, const size_t min_num_inliers) {
-  const TwoViewGeometryStore database(database_path);
+  return ReadHiddenImagePairs(TwoViewGeometryStore(database_path),
+                              min_num_inliers);
+}
+
+std::vector<ImageNamePair> ReadHiddenImagePairs(
+    const TwoViewGeometryStore& database, const size_t min_num_inliers) {
   std::map<image_t, std::string> names;
   for (const DatabaseImage& image : database.ReadAllImages()) {
     names[image.image_id] = image.name;

@@ -6,6 +6,7 @@
 
 #include "pairing/pairs_io.h"
 #include "scene/database.h"
+#include "scene/two_view_geometry_store.h"
 
 namespace colmap_gcn {
 
@@ -53,6 +54,8 @@ std::vector<ImageNamePair> ReadVerifiedImagePairs(const Database& database,
 // IsVerifiedTwoViewGeometry, as image names.
 std::vector<ImageNamePair> ReadHiddenImagePairs(
     const std::string& database_path, size_t min_num_inliers);
+std::vector<ImageNamePair> ReadHiddenImagePairs(
+    const TwoViewGeometryStore& database, size_t min_num_inliers);
 
 // The images' names in name order.
 std::vector<std::string> ReadImageNamesSorted(const Database& database);

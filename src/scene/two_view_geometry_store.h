@@ -46,9 +46,6 @@ class TwoViewGeometryStore : public Database {
   explicit TwoViewGeometryStore(const std::string& path,
                                 Mode mode = Mode::kReadOnly);
 
-  // Database::ReadAllCameras under the name the look-alike filter calls.
-  std::vector<DatabaseCamera> ReadCameras() const { return ReadAllCameras(); }
-
   // Keypoint positions (x, y; pixel centre at 0.5), one row per keypoint.
   Eigen::Matrix<float, Eigen::Dynamic, 2> ReadKeypointPositions(
       image_t image_id) const;
