@@ -47,16 +47,19 @@ double MedianCost(const std::vector<PinholeIntrinsics>& cameras,
 // The factor f minimising cost(f) over [min_scale, max_scale] relative to
 // `base`: a log-spaced grid, then two finer grids around the best step.
 //
-// Returns `base` when the coarse grid's best is within kEdgeSteps of either
-// end of the range:
-// the criterion then has no minimum inside it (near-planar pairs, noisy F)
-// and the database's value is the better guess.
-constexpr int kEdgeSteps = 3;
+// Returns `base` (*accepted false) when the coarse grid's best is within
+// kEdgeSteps of either end of the range: the criterion then has no minimum
+// inside it (near-planar pairs, noisy F, narrow fields of view: figurine's
+// 27-degree lens drove it to 0.54 of a guess that was 0.59 of the truth;
+// docs/lookalike.md) and the database's value is the better guess.
+constexpr int kEdgeSteps = 8;
 
 template <typename Cost>
 double MinimiseScale(const Cost& cost,
                      const double base,
-                     const FocalCalibrationOptions& options) {
+                     const FocalCalibrationOptions& options,
+                     bool* accepted) {
+  *accepted = false;
   double low = std::log(options.min_scale);
   double high = std::log(options.max_scale);
   double best = 0;
@@ -83,6 +86,7 @@ double MinimiseScale(const Cost& cost,
     low = best - step;
     high = best + step;
   }
+  *accepted = true;
   return base * std::exp(best);
 }
 
@@ -126,6 +130,7 @@ FocalCalibrationResult SelfCalibrateFocalLengths(
   FocalCalibrationResult result;
   result.cameras = cameras;
   result.scales.assign(num_cameras, 1.0);
+  result.calibrated.assign(num_cameras, false);
   // Pairs touching a guessed camera, overall and per camera.
   std::vector<int> guessed_pairs;
   std::vector<std::vector<int>> camera_pairs(num_cameras);
@@ -148,6 +153,7 @@ FocalCalibrationResult SelfCalibrateFocalLengths(
   result.num_pairs = static_cast<int>(guessed_pairs.size());
   if (result.num_pairs < options.min_num_pairs) return result;
   std::vector<double>& scales = result.scales;
+  std::vector<bool>& calibrated = result.calibrated;
   result.cost_before = MedianCost(cameras, scales, pairs, guessed_pairs);
 
   // 1. One scale factor shared by every guessed camera.
@@ -161,7 +167,14 @@ FocalCalibrationResult SelfCalibrateFocalLengths(
     set_shared(scale);
     return MedianCost(cameras, scales, pairs, guessed_pairs);
   };
-  set_shared(MinimiseScale(shared_cost, 1.0, options));
+  auto solve_shared = [&] {
+    bool accepted = false;
+    set_shared(MinimiseScale(shared_cost, 1.0, options, &accepted));
+    for (int c = 0; c < num_cameras; ++c) {
+      if (!trusted[c] && !own[c]) calibrated[c] = accepted;
+    }
+  };
+  solve_shared();
 
   // 2. Cameras with enough images and pairs get their own (in camera order,
   //    two sweeps), then the shared factor of the rest is solved again.
@@ -185,12 +198,15 @@ FocalCalibrationResult SelfCalibrateFocalLengths(
           return MedianCost(cameras, scales, pairs, camera_pairs[c]);
         };
         const double base = scales[c];
-        scales[c] = MinimiseScale(cost, base, local);
+        bool accepted = false;
+        scales[c] = MinimiseScale(cost, base, local, &accepted);
+        // Declined: the camera keeps its start, calibrated or not.
+        calibrated[c] = calibrated[c] || accepted;
       }
     }
     bool any_shared = false;
     for (int c = 0; c < num_cameras; ++c) any_shared |= !trusted[c] && !own[c];
-    if (any_shared) set_shared(MinimiseScale(shared_cost, 1.0, options));
+    if (any_shared) solve_shared();
   }
   for (int c = 0; c < num_cameras; ++c) {
     result.cameras[c] = Scaled(cameras[c], scales[c]);

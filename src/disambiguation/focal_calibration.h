@@ -48,6 +48,9 @@ double EssentialInconsistency(const Eigen::Matrix3d& E);
 struct FocalCalibrationResult {
   std::vector<PinholeIntrinsics> cameras;  // with the calibrated focals
   std::vector<double> scales;              // applied to each camera's focal
+  // The guessed cameras whose focal length the criterion fixed (a minimum
+  // inside the searched range); false for declined and trusted cameras.
+  std::vector<bool> calibrated;
   double cost_before = 0;  // median inconsistency with the given focals
   double cost_after = 0;   // and with the calibrated ones
   int num_pairs = 0;       // pairs that touch a guessed camera
@@ -56,8 +59,9 @@ struct FocalCalibrationResult {
 // Scales the focal lengths (fx and fy alike) of the cameras whose focal is
 // not trusted (trusted[c] false) to minimise the median inconsistency of
 // the pairs touching them; trusted cameras are kept. A scale whose minimum
-// lies at (within 3 grid steps of) an end of the searched range is declined
-// (kept at 1).
+// lies near an end of the searched range (within 8 grid steps, 13 % of
+// the range) is declined (kept at 1): the criterion then has no minimum
+// inside it.
 // Deterministic.
 FocalCalibrationResult SelfCalibrateFocalLengths(
     const std::vector<PinholeIntrinsics>& cameras,

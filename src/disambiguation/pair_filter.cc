@@ -157,13 +157,15 @@ int CoveredCells(const VerifiedTwoViewGeometry& pair,
 // Replaces the intrinsics of the cameras without a trusted focal length by
 // self-calibrated ones (focal_calibration.h), from the F of the pairs
 // verified calibrated or uncalibrated (planar and panoramic F say nothing
-// about the focal length).
+// about the focal length). Marks in *calibrated the cameras whose focal
+// length the calibration fixed.
 void SelfCalibrateCameras(const std::vector<DatabaseImage>& images,
                           const std::map<image_t, int>& index,
                           const std::vector<VerifiedTwoViewGeometry>& pairs,
                           const std::map<camera_t, bool>& trusted_focal,
                           const FocalCalibrationOptions& options,
                           std::map<camera_t, PinholeIntrinsics>* cameras,
+                          std::map<camera_t, bool>* calibrated,
                           PairFilterReport* report) {
   std::vector<camera_t> ids;
   std::map<camera_t, int> camera_index;
@@ -197,7 +199,11 @@ void SelfCalibrateCameras(const std::vector<DatabaseImage>& images,
   std::vector<double> guessed_scales;
   for (size_t c = 0; c < ids.size(); ++c) {
     (*cameras)[ids[c]] = result.cameras[c];
-    if (!trusted[c]) guessed_scales.push_back(result.scales[c]);
+    (*calibrated)[ids[c]] = result.calibrated[c];
+    if (!trusted[c]) {
+      guessed_scales.push_back(result.scales[c]);
+      report->num_uncalibrated_cameras += !result.calibrated[c];
+    }
   }
   std::sort(guessed_scales.begin(), guessed_scales.end());
   report->median_focal_scale = guessed_scales[guessed_scales.size() / 2];
@@ -314,14 +320,24 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
       keypoints[i] = database.ReadKeypointPositions(images[i].image_id);
   }
 
+  // Rotations are judged only between cameras whose focal length is
+  // trusted or self-calibrated: with a guess they are wrong by tens of
+  // degrees, and the loop test then hides real pairs (figurine and fox:
+  // docs/lookalike.md). Such pairs are kept, like pairs without a rotation.
+  std::map<camera_t, bool> rotation_trusted = trusted_focal;
   if (options.self_calibrate_focal) {
+    std::map<camera_t, bool> calibrated;
     SelfCalibrateCameras(images,
                          index,
                          pairs,
                          trusted_focal,
                          options.focal_calibration,
                          &cameras,
+                         &calibrated,
                          &report);
+    for (auto& [id, trusted] : rotation_trusted) {
+      trusted = trusted || calibrated[id];
+    }
   }
 
   std::vector<ViewGraphEdge> edges(pairs.size());
@@ -340,6 +356,12 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                                      keypoints[edge.image2],
                                      sizes.at(images[edge.image1].camera_id),
                                      sizes.at(images[edge.image2].camera_id));
+        const camera_t camera1 = images[edge.image1].camera_id;
+        const camera_t camera2 = images[edge.image2].camera_id;
+        if (!rotation_trusted.at(camera1) || !rotation_trusted.at(camera2)) {
+          progress.Increment();
+          return;
+        }
         MeasureRotations(pair,
                          keypoints[edge.image1],
                          keypoints[edge.image2],
@@ -463,6 +485,12 @@ void PrintPairFilterReport(const PairFilterReport& report,
         report.median_focal_scale,
         report.focal_cost_before,
         report.focal_cost_after);
+  }
+  if (report.num_uncalibrated_cameras > 0) {
+    std::printf(
+        "  %zu cameras whose focal length is neither trusted nor "
+        "self-calibrated: their pairs are kept without a judgement\n",
+        report.num_uncalibrated_cameras);
   }
   for (const auto& [reason, count] : by_reason) {
     std::printf("  %-14s %zu\n", reason.c_str(), count);

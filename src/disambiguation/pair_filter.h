@@ -71,6 +71,9 @@ struct PairFilterReport {
   // Focal self-calibration: guessed cameras, the median scale applied to
   // their focal lengths and the median essential inconsistency before/after.
   size_t num_guessed_cameras = 0;
+  // Guessed cameras the self-calibration declined: no rotation is judged
+  // for their pairs.
+  size_t num_uncalibrated_cameras = 0;
   double median_focal_scale = 1;
   double focal_cost_before = 0;
   double focal_cost_after = 0;

@@ -87,9 +87,11 @@ void Insert(sqlite3* db,
 // n cameras; real pairs up to `reach` steps apart see the room and the face
 // in front of them; each camera also "verifies" with the cameras facing the
 // other face (n/2 steps away), through the print alone. Returns the
-// look-alike pairs' image names.
+// look-alike pairs' image names. The pairs are verified calibrated
+// (config 2, E), as COLMAP does only when both focal lengths are trusted
+// (trusted_focal: prior_focal_length 1).
 std::set<std::pair<std::string, std::string>> WriteRingDatabase(
-    const std::string& path, int n, int reach) {
+    const std::string& path, int n, int reach, bool trusted_focal = true) {
   ExecuteSql(path, kColmap38Schema);
   std::vector<Eigen::Vector3d> print;  // front face, y = -1
   for (int k = 0; k < 60; ++k) {
@@ -138,7 +140,8 @@ std::set<std::pair<std::string, std::string>> WriteRingDatabase(
     }
     const std::string id = std::to_string(i + 1);
     Insert(db,
-           "INSERT INTO cameras VALUES (" + id + ", 1, 640, 480, ?, 0)",
+           "INSERT INTO cameras VALUES (" + id + ", 1, 640, 480, ?, " +
+               (trusted_focal ? "1" : "0") + ")",
            {{params, 32}});
     Insert(db,
            "INSERT INTO images (image_id, name, camera_id) VALUES (" + id +
@@ -223,6 +226,24 @@ TEST(PairFilter, FindsTheLookalikePairsOfAPrintedRing) {
       EXPECT_LT(entry.decision.rotation_error, 1.0);
     }
   }
+}
+
+// The same ring with focal lengths that are COLMAP's guesses and no F to
+// calibrate them (every pair verified calibrated): no rotation can be
+// trusted, so nothing is judged and nothing hidden.
+TEST(PairFilter, GuessedFocalLengthsThatCannotBeCalibratedAreNotJudged) {
+  TemporaryDirectory dir("colmap_gcn_pair_filter");
+  const std::string path = JoinPaths(dir.Path(), "ring.db");
+  WriteRingDatabase(path, 20, 3, /*trusted_focal=*/false);
+  PairFilterOptions options;
+  options.num_threads = 1;
+  const TwoViewGeometryStore database(path);
+  const PairFilterReport report = FindLookalikePairs(database, options);
+  EXPECT_EQ(report.num_verified_pairs, 70u);
+  EXPECT_EQ(report.num_guessed_cameras, 20u);
+  EXPECT_EQ(report.num_uncalibrated_cameras, 20u);
+  EXPECT_EQ(report.num_without_rotation, 70u);
+  EXPECT_TRUE(Rejected(report).empty());
 }
 
 TEST(PairFilter, DecisionsDoNotDependOnTheThreadCount) {
