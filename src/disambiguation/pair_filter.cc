@@ -157,15 +157,15 @@ int CoveredCells(const VerifiedTwoViewGeometry& pair,
 // Replaces the intrinsics of the cameras without a trusted focal length by
 // self-calibrated ones (focal_calibration.h), from the F of the pairs
 // verified calibrated or uncalibrated (planar and panoramic F say nothing
-// about the focal length). Marks in *calibrated the cameras whose focal
-// length the calibration fixed.
+// about the focal length). Marks in *rotation_trusted the cameras whose
+// focal length the calibration fixed as well.
 void SelfCalibrateCameras(const std::vector<DatabaseImage>& images,
                           const std::map<image_t, int>& index,
                           const std::vector<VerifiedTwoViewGeometry>& pairs,
                           const std::map<camera_t, bool>& trusted_focal,
                           const FocalCalibrationOptions& options,
                           std::map<camera_t, PinholeIntrinsics>* cameras,
-                          std::map<camera_t, bool>* calibrated,
+                          std::map<camera_t, bool>* rotation_trusted,
                           PairFilterReport* report) {
   std::vector<camera_t> ids;
   std::map<camera_t, int> camera_index;
@@ -199,8 +199,8 @@ void SelfCalibrateCameras(const std::vector<DatabaseImage>& images,
   std::vector<double> guessed_scales;
   for (size_t c = 0; c < ids.size(); ++c) {
     (*cameras)[ids[c]] = result.cameras[c];
-    (*calibrated)[ids[c]] = result.calibrated[c];
     if (!trusted[c]) {
+      (*rotation_trusted)[ids[c]] = result.calibrated[c];
       guessed_scales.push_back(result.scales[c]);
       report->num_uncalibrated_cameras += !result.calibrated[c];
     }
@@ -326,18 +326,14 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
   // docs/lookalike.md). Such pairs are kept, like pairs without a rotation.
   std::map<camera_t, bool> rotation_trusted = trusted_focal;
   if (options.self_calibrate_focal) {
-    std::map<camera_t, bool> calibrated;
     SelfCalibrateCameras(images,
                          index,
                          pairs,
                          trusted_focal,
                          options.focal_calibration,
                          &cameras,
-                         &calibrated,
+                         &rotation_trusted,
                          &report);
-    for (auto& [id, trusted] : rotation_trusted) {
-      trusted = trusted || calibrated[id];
-    }
   }
 
   std::vector<ViewGraphEdge> edges(pairs.size());
@@ -358,20 +354,18 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                                      sizes.at(images[edge.image2].camera_id));
         const camera_t camera1 = images[edge.image1].camera_id;
         const camera_t camera2 = images[edge.image2].camera_id;
-        if (!rotation_trusted.at(camera1) || !rotation_trusted.at(camera2)) {
-          progress.Increment();
-          return;
+        if (rotation_trusted.at(camera1) && rotation_trusted.at(camera2)) {
+          MeasureRotations(
+              pair,
+              keypoints[edge.image1],
+              keypoints[edge.image2],
+              cameras.at(camera1),
+              cameras.at(camera2),
+              trusted_focal.at(camera1) && trusted_focal.at(camera2),
+              options.max_rays_per_pair,
+              &rotations[p]);
+          AssignRotations(pair.config, rotations[p], &edge);
         }
-        MeasureRotations(pair,
-                         keypoints[edge.image1],
-                         keypoints[edge.image2],
-                         cameras.at(images[edge.image1].camera_id),
-                         cameras.at(images[edge.image2].camera_id),
-                         trusted_focal.at(images[edge.image1].camera_id) &&
-                             trusted_focal.at(images[edge.image2].camera_id),
-                         options.max_rays_per_pair,
-                         &rotations[p]);
-        AssignRotations(pair.config, rotations[p], &edge);
         progress.Increment();
       });
   const std::vector<LookalikeDecision> decisions = DecideLookalikePairs(

@@ -209,15 +209,18 @@ std::set<std::pair<std::string, std::string>> Rejected(
   return pairs;
 }
 
+PairFilterReport FilterSingleThreaded(const std::string& path) {
+  PairFilterOptions options;
+  options.num_threads = 1;
+  return FindLookalikePairs(TwoViewGeometryStore(path), options);
+}
+
 TEST(PairFilter, FindsTheLookalikePairsOfAPrintedRing) {
   TemporaryDirectory dir("colmap_gcn_pair_filter");
   const std::string path = JoinPaths(dir.Path(), "ring.db");
   const auto lookalikes = WriteRingDatabase(path, 20, 3);
   ASSERT_EQ(lookalikes.size(), 10u);
-  PairFilterOptions options;
-  options.num_threads = 1;
-  const TwoViewGeometryStore database(path);
-  const PairFilterReport report = FindLookalikePairs(database, options);
+  const PairFilterReport report = FilterSingleThreaded(path);
   EXPECT_EQ(report.num_verified_pairs, 70u);
   EXPECT_EQ(report.num_without_rotation, 0u);
   EXPECT_EQ(Rejected(report), lookalikes);
@@ -235,10 +238,7 @@ TEST(PairFilter, GuessedFocalLengthsThatCannotBeCalibratedAreNotJudged) {
   TemporaryDirectory dir("colmap_gcn_pair_filter");
   const std::string path = JoinPaths(dir.Path(), "ring.db");
   WriteRingDatabase(path, 20, 3, /*trusted_focal=*/false);
-  PairFilterOptions options;
-  options.num_threads = 1;
-  const TwoViewGeometryStore database(path);
-  const PairFilterReport report = FindLookalikePairs(database, options);
+  const PairFilterReport report = FilterSingleThreaded(path);
   EXPECT_EQ(report.num_verified_pairs, 70u);
   EXPECT_EQ(report.num_guessed_cameras, 20u);
   EXPECT_EQ(report.num_uncalibrated_cameras, 20u);
