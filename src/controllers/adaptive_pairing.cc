@@ -34,6 +34,10 @@ void AdaptivePairingOptions::Check() const {
   CHECK_OPTION_RANGE(relative_strength, 0.0, 1.0);
   CHECK_OPTION_GE(min_strong_partners, 0);
   CHECK_OPTION_GE(image_patience, 0);
+  CHECK_OPTION(
+      max_strong_partners,
+      max_strong_partners == 0 || max_strong_partners >= min_strong_partners,
+      "be 0 (no cap) or >= min_strong_partners");
 }
 
 AdaptivePairGenerator::AdaptivePairGenerator(
@@ -462,6 +466,18 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
     }
     return candidates_[a].score > candidates_[b].score;
   });
+  const bool enough = options_.stop_rule == AdaptiveStopRule::kEnough;
+  if (enough && options_.max_strong_partners > 0) {
+    const size_t cap = static_cast<size_t>(options_.max_strong_partners);
+    std::vector<int> wanted;
+    for (const int c : untried) {
+      if (strong_neighbours_[candidates_[c].row1].size() < cap ||
+          strong_neighbours_[candidates_[c].row2].size() < cap) {
+        wanted.push_back(c);
+      }
+    }
+    untried.swap(wanted);
+  }
   const size_t round_size = std::min(RoundSize(), budget);
   std::vector<int> block;
   for (const int c : untried) {
@@ -471,7 +487,6 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
     }
     block.push_back(c);
   }
-  const bool enough = options_.stop_rule == AdaptiveStopRule::kEnough;
   const AdaptiveRound& last = rounds_.back();
   const double last_yield = last.num_pairs == 0
                                 ? 0.0
@@ -524,7 +539,13 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
                              std::to_string(options_.min_strong_partners) +
                              " strong partners or has tried " +
                              std::to_string(options_.image_patience) +
-                             " candidates without one"
+                             " candidates without one" +
+                             (options_.max_strong_partners > 0
+                                  ? " (pairs of two images with " +
+                                        std::to_string(
+                                            options_.max_strong_partners) +
+                                        " strong partners are not asked for)"
+                                  : std::string())
                        : std::string())
             << (budget == 0 ? " within max_num_pairs" : "");
   return block;

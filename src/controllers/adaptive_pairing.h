@@ -35,7 +35,9 @@ namespace colmap_gcn {
 //   candidates until it has min_strong_partners strong partners or has spent
 //   image_patience attempts without one; probe rounds run only while they
 //   still connect the collection (more images reach min_strong_partners or
-//   strong components merge).
+//   strong components merge); a pair whose two images already have
+//   max_strong_partners strong partners is not asked for, which is what
+//   ends the rounds on a dense capture where almost every pair verifies.
 // - kRecall (adaptive_recall, graphmatch): the rule before kEnough: probe
 //   rounds while the last round's strong fraction reached min_pair_yield,
 //   then the connectivity attempts of isolated_retries.
@@ -103,6 +105,13 @@ struct AdaptivePairingOptions {
   // ... while it has spent fewer than this many attempts that did not
   // verify strongly (its candidates tried in order of probability).
   int image_patience = 5;
+
+  // kEnough: an image with this many strong partners has enough for the
+  // mapper (hloc's SfM pipelines triangulate from each image's 20 most
+  // covisible images); later rounds skip candidates whose two images both
+  // have it, so a dense capture where almost every pair verifies strongly
+  // stops short of exhaustive's budget. 0: no cap.
+  int max_strong_partners = 20;
 
   // Throws OptionError naming the first invalid field.
   void Check() const;

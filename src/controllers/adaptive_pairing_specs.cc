@@ -159,6 +159,11 @@ void AddAdaptiveOptions(OptionManager* manager,
       &options->image_patience,
       "adaptive: attempts without a strong verification after which an "
       "image stops trying");
+  manager->AddDefaultOption(
+      "GcnMatching.max_strong_partners",
+      &options->max_strong_partners,
+      "adaptive: strong partners after which an image has enough for the "
+      "mapper; 0: no cap");
 }
 
 }  // namespace

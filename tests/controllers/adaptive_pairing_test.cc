@@ -325,6 +325,45 @@ TEST(AdaptivePairGenerator, EnoughStopsOnADenseCaptureWhereRecallDoesNot) {
   EXPECT_EQ(enough.Rounds().back().num_connected, 28u);
 }
 
+TEST(AdaptivePairGenerator, ImagesWithEnoughStrongPartnersStopAskingForMore) {
+  // A video-like capture: every pair of 60 images verifies strongly, so
+  // the calibrated probability never falls below min_pair_yield and only
+  // max_strong_partners ends the rounds.
+  const LineScene scene(60);  // 1770 pairs
+  const auto verify = [](const ImagePair& pair) {
+    PairVerification verification = LineScene::Verify(pair);
+    verification.num_inliers = 2000 * 10 / (10 + LineScene::Distance(pair));
+    return verification;
+  };
+  AdaptivePairingOptions options;
+  options.max_strong_partners = 0;
+  AdaptivePairGenerator uncapped(options, scene.image_ids, scene.candidates);
+  const auto uncapped_pairs = Flatten(RunToTheEnd(&uncapped, verify));
+  options.max_strong_partners = 20;
+  AdaptivePairGenerator capped(options, scene.image_ids, scene.candidates);
+  const auto capped_pairs = Flatten(RunToTheEnd(&capped, verify));
+  EXPECT_GT(uncapped_pairs.size(), 1700u);
+  EXPECT_LT(capped_pairs.size(), 900u);
+  std::map<image_t, int> partners;
+  std::set<image_pair_t> attempted;
+  for (const ImagePair& pair : capped_pairs) {
+    ++partners[pair.first];
+    ++partners[pair.second];
+    attempted.insert(ImagePairToPairId(pair.first, pair.second));
+  }
+  for (const image_t image_id : scene.image_ids) {
+    EXPECT_GE(partners[image_id], 20) << "image " << image_id;
+  }
+  // The partners kept are the most probable ones: the nearest.
+  for (const PairCandidate& candidate : scene.candidates) {
+    if (LineScene::Distance({candidate.image_id1, candidate.image_id2}) <= 5) {
+      EXPECT_EQ(attempted.count(ImagePairToPairId(candidate.image_id1,
+                                                  candidate.image_id2)),
+                1u);
+    }
+  }
+}
+
 TEST(AdaptivePairGenerator, WeakImagesKeepTryingWithinTheirPatience) {
   RingScene scene(20);
   // Image 21: eight low-scored candidates; only the last (lowest) one
@@ -531,6 +570,8 @@ TEST(AdaptivePairingOptions, CheckNamesTheField) {
          "min_strong_partners");
   expect([](AdaptivePairingOptions* o) { o->image_patience = -1; },
          "image_patience");
+  expect([](AdaptivePairingOptions* o) { o->max_strong_partners = 2; },
+         "max_strong_partners");
   EXPECT_NO_THROW(AdaptivePairingOptions().Check());
 }
 
