@@ -531,22 +531,23 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
     next_yield_ = sum / static_cast<double>(block.size());
     return block;
   }
+  std::string enough_reason;
+  if (enough) {
+    enough_reason = ", and every image has " +
+                    std::to_string(options_.min_strong_partners) +
+                    " strong partners or has tried " +
+                    std::to_string(options_.image_patience) +
+                    " candidates without one";
+  }
+  if (enough && options_.max_strong_partners > 0) {
+    enough_reason += " (pairs of two images with " +
+                     std::to_string(options_.max_strong_partners) +
+                     " strong partners are not asked for)";
+  }
   LOG(INFO) << label_ << ": finished after " << rounds_.size()
             << " rounds; no candidate left with a calibrated probability "
                "of a strong verification >= "
-            << options_.min_pair_yield
-            << (enough ? ", and every image has " +
-                             std::to_string(options_.min_strong_partners) +
-                             " strong partners or has tried " +
-                             std::to_string(options_.image_patience) +
-                             " candidates without one" +
-                             (options_.max_strong_partners > 0
-                                  ? " (pairs of two images with " +
-                                        std::to_string(
-                                            options_.max_strong_partners) +
-                                        " strong partners are not asked for)"
-                                  : std::string())
-                       : std::string())
+            << options_.min_pair_yield << enough_reason
             << (budget == 0 ? " within max_num_pairs" : "");
   return block;
 }
