@@ -21,7 +21,8 @@ int RunGcnSynth(int argc, char** argv) {
   manager.AddRequiredOption("output_path", &output_path);
   manager.AddDefaultOption("GcnSynth.family",
                            &options.family,
-                           "ordinary, repetitive, symmetric or twin_print");
+                           "ordinary, repetitive, symmetric, twin_print or "
+                           "twin_objects");
   manager.AddDefaultOption("GcnSynth.num_images", &options.num_images);
   manager.AddDefaultOption("GcnSynth.num_distractors",
                            &options.num_distractors,

@@ -266,6 +266,76 @@ SyntheticWorld BuildTwinPrintWorld(const WorldParams& params) {
   return world;
 }
 
+SyntheticWorld BuildTwinObjectsWorld(const WorldParams& params) {
+  SyntheticWorld world;
+  Scene& scene = world.scene;
+  TextureFactory textures(&scene, params, 1);
+  SyntheticRandom rng(SyntheticRandom::Mix(params.seed, 6));
+  const double g = 14.0;
+  AddGround(&scene, &textures, g);
+  AddBackgroundRing(&scene, &textures, g, 6.0, 3);
+  // The table: unique top and sides.
+  const double table_height = 1.0;
+  const double table_width = 9.0;
+  scene.AddBox(Eigen::Vector2d::Zero(),
+               Eigen::Vector2d(table_width, 3.0),
+               0.0,
+               0.0,
+               table_height,
+               {textures.Random(512, 256),
+                textures.Random(256, 256),
+                textures.Random(512, 256),
+                textures.Random(256, 256)},
+               textures.Random(1024, 512),
+               0.0);
+  // The two copies: one set of textures, one size, one yaw.
+  const std::vector<int> sides = {textures.Random(512, 512),
+                                  textures.Random(512, 512),
+                                  textures.Random(512, 512),
+                                  textures.Random(512, 512)};
+  const int top = textures.Random(256, 256);
+  const Eigen::Vector2d size(rng.Uniform(1.2, 1.6), rng.Uniform(0.8, 1.2));
+  const double height = rng.Uniform(1.2, 1.8);
+  const double yaw = rng.Uniform(-0.3, 0.3);
+  const double half_spacing = rng.Uniform(2.2, 2.8);
+  for (const double x : {-half_spacing, half_spacing}) {
+    scene.AddBox(Eigen::Vector2d(x, 0.0),
+                 size,
+                 yaw,
+                 table_height,
+                 height,
+                 sides,
+                 top,
+                 0.0);
+  }
+  // The arc: in front of the table (negative y), from the first copy's side
+  // to the second's, each camera looking at a point that moves with it from
+  // the first copy to the second.
+  const int n = params.num_images;
+  const double arc = rng.Uniform(0.45, 0.55) * M_PI;
+  const double radius = rng.Uniform(5.5, 6.5);
+  for (int i = 0; i < n; ++i) {
+    const double a = n > 1 ? static_cast<double>(i) / (n - 1) : 0.5;
+    const double jitter = rng.Uniform(-0.25, 0.25) / std::max(1, n - 1);
+    const double angle = -0.5 * M_PI + (a + jitter - 0.5) * arc;
+    const Eigen::Vector3d center(radius * std::cos(angle),
+                                 radius * std::sin(angle),
+                                 rng.Uniform(2.2, 3.2));
+    const Eigen::Vector3d look_at(
+        (2.0 * a - 1.0) * half_spacing + rng.Uniform(-0.3, 0.3),
+        rng.Uniform(-0.3, 0.3),
+        table_height + 0.5 * height + rng.Uniform(-0.2, 0.2));
+    world.cameras.push_back(LookAtCamera(center,
+                                         look_at,
+                                         rng.Uniform(-0.05, 0.05),
+                                         params.width,
+                                         params.height,
+                                         params.focal_length));
+  }
+  world.target = Eigen::Vector3d(0, 0, table_height + 0.5 * height);
+  return world;
+}
+
 namespace {
 
 // The symmetric world's tiered tower, from height z up: n-sided walls,

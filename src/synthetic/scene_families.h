@@ -59,6 +59,13 @@ SyntheticWorld BuildSymmetricWorld(const WorldParams& params);
 // and back views look alike except for the room behind the object.
 SyntheticWorld BuildTwinPrintWorld(const WorldParams& params);
 
+// Two identical objects (same shape, same textures, same orientation) side
+// by side on a table in a room whose walls are all different; the cameras
+// sweep an arc in front of the table, turning from the first object to the
+// second, so early views see one copy and late views the other from similar
+// angles (like the books and cup-desk scenes of Roberts et al.).
+SyntheticWorld BuildTwinObjectsWorld(const WorldParams& params);
+
 // An unrelated little scene (own ground and boxes, no background ring) seen
 // by params.num_images cameras; used for distractor images.
 SyntheticWorld BuildDistractorWorld(const WorldParams& params);

@@ -31,9 +31,11 @@ SyntheticWorld BuildWorld(const std::string& family,
   if (family == "repetitive") return BuildRepetitiveWorld(params);
   if (family == "symmetric") return BuildSymmetricWorld(params);
   if (family == "twin_print") return BuildTwinPrintWorld(params);
+  if (family == "twin_objects") return BuildTwinObjectsWorld(params);
   ThrowError("unknown synthetic scene family '",
              family,
-             "' (expected ordinary, repetitive, symmetric or twin_print)");
+             "' (expected ordinary, repetitive, symmetric, twin_print or "
+             "twin_objects)");
 }
 
 void WriteImage(const std::string& path,
@@ -78,8 +80,12 @@ std::string DistractorImageName(int index) {
 }
 
 void SyntheticSceneOptions::Check() const {
-  CHECK_OPTION_ONE_OF(
-      family, "ordinary", "repetitive", "symmetric", "twin_print");
+  CHECK_OPTION_ONE_OF(family,
+                      "ordinary",
+                      "repetitive",
+                      "symmetric",
+                      "twin_print",
+                      "twin_objects");
   CHECK_OPTION_RANGE(num_images, 2, 100000);
   CHECK_OPTION_RANGE(num_distractors, 0, 100000);
   CHECK_OPTION_RANGE(width, 16, 16384);

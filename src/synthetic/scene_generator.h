@@ -6,7 +6,8 @@ namespace colmap_gcn {
 
 // Options of the synthetic scene generator (`colmap gcn_synth`).
 struct SyntheticSceneOptions {
-  // Scene family: "ordinary", "repetitive", "symmetric" or "twin_print".
+  // Scene family: "ordinary", "repetitive", "symmetric", "twin_print" or
+  // "twin_objects" (src/synthetic/scene_families.h).
   std::string family = "ordinary";
   // Images of the scene (named synth_0000.jpg, ...).
   int num_images = 40;

@@ -478,7 +478,8 @@ TEST_F(BadInput, BenchmarkUnknownSyntheticFamily) {
   ExpectBenchmarkError(
       "--datasets synth:gothic:10",
       {"dataset \"synth:gothic:10\"",
-       "family must be one of ordinary|repetitive|symmetric|twin_print (got "
+       "family must be one of ordinary|repetitive|symmetric|twin_print|"
+       "twin_objects (got "
        "\"gothic\")"});
 }
 
@@ -587,7 +588,7 @@ TEST_F(BadInput, SynthUnknownFamily) {
       RunColmap("gcn_synth --output_path " + ShellQuote(Path("synth")) +
                 " --GcnSynth.family gothic"),
       {"--GcnSynth.family must be one of "
-       "ordinary|repetitive|symmetric|twin_print (got "
+       "ordinary|repetitive|symmetric|twin_print|twin_objects (got "
        "\"gothic\")"});
   EXPECT_FALSE(ExistsDir(Path("synth")));
 }

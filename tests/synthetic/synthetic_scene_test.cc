@@ -408,6 +408,49 @@ TEST(SceneFamilies, RepetitiveFacadesShareOneTileTexture) {
   EXPECT_EQ(static_cast<int>(world.cameras.size()), params.num_images);
 }
 
+TEST(SceneFamilies, TwinObjectsAreTranslatedCopiesSeenFromAnArc) {
+  WorldParams params;
+  params.num_images = 12;
+  params.seed = 3;
+  const SyntheticWorld world = BuildTwinObjectsWorld(params);
+  // Every triangle of the first copy has a translated twin with the same
+  // texture and texture coordinates: the copies are indistinguishable.
+  std::map<int, int> triangles_per_texture;
+  for (const SceneTriangle& tri : world.scene.triangles) {
+    ++triangles_per_texture[tri.texture_id];
+  }
+  int num_matched = 0;
+  for (const SceneTriangle& tri : world.scene.triangles) {
+    if (tri.v0.x() >= 0 || triangles_per_texture[tri.texture_id] < 4) continue;
+    for (const SceneTriangle& other : world.scene.triangles) {
+      const Eigen::Vector3d shift = other.v0 - tri.v0;
+      if (other.texture_id == tri.texture_id && shift.x() > 1.0 &&
+          std::abs(shift.y()) < 1e-9 && std::abs(shift.z()) < 1e-9 &&
+          (other.e1 - tri.e1).norm() < 1e-9 &&
+          (other.e2 - tri.e2).norm() < 1e-9 &&
+          (other.uv0 - tri.uv0).norm() < 1e-9) {
+        ++num_matched;
+        break;
+      }
+    }
+  }
+  // Four sides (two triangles each) and the top (a fan of four).
+  EXPECT_EQ(num_matched, 12);
+  // The cameras sweep in front of the table (negative y), left to right,
+  // and turn with it.
+  ASSERT_EQ(static_cast<int>(world.cameras.size()), params.num_images);
+  for (size_t i = 0; i < world.cameras.size(); ++i) {
+    const Eigen::Vector3d center = world.cameras[i].Center();
+    EXPECT_LT(center.y(), -2.0);
+    if (i > 0) {
+      EXPECT_GT(center.x(), world.cameras[i - 1].Center().x());
+    }
+  }
+  const Eigen::Vector3d first = world.cameras.front().R.row(2).transpose();
+  const Eigen::Vector3d last = world.cameras.back().R.row(2).transpose();
+  EXPECT_LT(first.dot(last), std::cos(25.0 * M_PI / 180.0));
+}
+
 TEST(PairOverlapTable, RoundTripAndErrors) {
   PairOverlapTable table;
   PairOverlap pair;
