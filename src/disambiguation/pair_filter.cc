@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "disambiguation/inlier_grid.h"
 #include "disambiguation/relative_pose.h"
 #include "scene/database_working_copy.h"
 #include "util/error.h"
@@ -21,8 +22,6 @@
 
 namespace colmap_gcn {
 namespace {
-
-typedef Eigen::Matrix<float, Eigen::Dynamic, 2> KeypointPositions;
 
 // Rays (normalised coordinates) of at most max_rays of a pair's inliers,
 // evenly spaced over them.
@@ -118,42 +117,6 @@ void AssignRotations(const int config,
                             rotations.homography.end());
 }
 
-// Cells of a kCoverageGrid x kCoverageGrid grid over each image that hold an
-// inlier; the fewer of the two images.
-constexpr int kCoverageGrid = 8;
-
-int CoveredCells(const VerifiedTwoViewGeometry& pair,
-                 const KeypointPositions& keypoints1,
-                 const KeypointPositions& keypoints2,
-                 const Eigen::Vector2d& size1,
-                 const Eigen::Vector2d& size2) {
-  std::vector<bool> cells1(kCoverageGrid * kCoverageGrid, false);
-  std::vector<bool> cells2(kCoverageGrid * kCoverageGrid, false);
-  auto cell = [](const KeypointPositions& keypoints,
-                 uint32_t k,
-                 const Eigen::Vector2d& size) {
-    const int x =
-        std::clamp(static_cast<int>(kCoverageGrid * keypoints(k, 0) / size.x()),
-                   0,
-                   kCoverageGrid - 1);
-    const int y =
-        std::clamp(static_cast<int>(kCoverageGrid * keypoints(k, 1) / size.y()),
-                   0,
-                   kCoverageGrid - 1);
-    return y * kCoverageGrid + x;
-  };
-  for (Eigen::Index i = 0; i < pair.inliers.rows(); ++i) {
-    const uint32_t k1 = pair.inliers(i, 0);
-    const uint32_t k2 = pair.inliers(i, 1);
-    if (k1 >= keypoints1.rows() || k2 >= keypoints2.rows()) continue;
-    cells1[cell(keypoints1, k1, size1)] = true;
-    cells2[cell(keypoints2, k2, size2)] = true;
-  }
-  return static_cast<int>(
-      std::min(std::count(cells1.begin(), cells1.end(), true),
-               std::count(cells2.begin(), cells2.end(), true)));
-}
-
 // Replaces the intrinsics of the cameras without a trusted focal length by
 // self-calibrated ones (focal_calibration.h), from the F of the pairs
 // verified calibrated or uncalibrated (planar and panoramic F say nothing
@@ -222,11 +185,11 @@ std::string CsvRotation(const bool has, const Eigen::Matrix3d& R) {
 std::string CsvLine(const PairFilterEntry& entry) {
   std::ostringstream line;
   line << entry.name1 << ',' << entry.name2 << ',' << entry.num_inliers << ','
-       << entry.strength << ',' << entry.decision.rotation_error << ','
-       << entry.decision.backbone_hops << ',' << entry.decision.in_backbone
-       << ',' << entry.decision.in_tree << ','
-       << LookalikeReasonName(entry.decision.reason) << ',' << entry.config
-       << ','
+       << entry.covered_cells << ',' << entry.strength << ','
+       << entry.decision.rotation_error << ',' << entry.decision.backbone_hops
+       << ',' << entry.decision.in_backbone << ',' << entry.decision.in_tree
+       << ',' << LookalikeReasonName(entry.decision.reason) << ','
+       << entry.config << ','
        << CsvRotation(entry.rotations.has_essential, entry.rotations.essential)
        << ',' << entry.rotations.homography.size();
   for (size_t i = 0; i < 2; ++i) {
@@ -243,8 +206,8 @@ std::string CsvLine(const PairFilterEntry& entry) {
 // One line per verified pair: its evidence and decision.
 void WritePairsCsv(const PairFilterReport& report, const std::string& path) {
   std::string csv =
-      "name1,name2,num_inliers,covered_cells,rotation_error,backbone_hops,in_"
-      "backbone,"
+      "name1,name2,num_inliers,covered_cells,distinctive_inliers,rotation_"
+      "error,backbone_hops,in_backbone,"
       "in_tree,decision,config,ew,ex,ey,ez,num_h,h1w,h1x,h1y,h1z,h2w,h2x,h2y,"
       "h2z\n";
   for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
@@ -258,6 +221,7 @@ void PairFilterOptions::Check() const {
   focal_calibration.Check();
   CHECK_OPTION_GE(min_num_inliers, 0);
   CHECK_OPTION_GE(max_rays_per_pair, 5);
+  CHECK_OPTION_INTERVAL(distinctive_share, 0.0, true, 1.0, true);
   CHECK_OPTION_NUM_THREADS(num_threads);
 }
 
@@ -338,6 +302,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
 
   std::vector<ViewGraphEdge> edges(pairs.size());
   std::vector<PairRotations> rotations(pairs.size());
+  std::vector<PairInlierCells> cells(pairs.size());
   ProgressLogger progress(pairs.size(), "look-alike filter", "pairs");
   ParallelFor(
       0, static_cast<int>(pairs.size()), options.num_threads, [&](int p) {
@@ -347,13 +312,13 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
         edge.image1 = index.at(pair.image_id1);
         edge.image2 = index.at(pair.image_id2);
         edge.num_inliers = static_cast<int>(pair.inliers.rows());
-        edge.strength = CoveredCells(pair,
-                                     keypoints[edge.image1],
-                                     keypoints[edge.image2],
-                                     sizes.at(images[edge.image1].camera_id),
-                                     sizes.at(images[edge.image2].camera_id));
         const camera_t camera1 = images[edge.image1].camera_id;
         const camera_t camera2 = images[edge.image2].camera_id;
+        cells[p] = ComputeInlierCells(pair,
+                                      keypoints[edge.image1],
+                                      keypoints[edge.image2],
+                                      sizes.at(camera1),
+                                      sizes.at(camera2));
         if (rotation_trusted.at(camera1) && rotation_trusted.at(camera2)) {
           MeasureRotations(
               pair,
@@ -368,6 +333,17 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
         }
         progress.Increment();
       });
+  // The edges' strength: overlap where few of each image's partners reach
+  // (inlier_grid.h), so that the backbone follows the real neighbours of an
+  // image rather than the partners that match only its duplicate structure.
+  InlierCellReach reach(static_cast<int>(images.size()));
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    reach.AddPair(edges[p].image1, edges[p].image2, cells[p]);
+  }
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    edges[p].strength = reach.DistinctiveInliers(
+        edges[p].image1, edges[p].image2, cells[p], options.distinctive_share);
+  }
   const std::vector<LookalikeDecision> decisions = DecideLookalikePairs(
       static_cast<int>(images.size()), edges, options.decision);
   for (size_t p = 0; p < pairs.size(); ++p) {
@@ -376,6 +352,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
     entry.name1 = images[edges[p].image1].name;
     entry.name2 = images[edges[p].image2].name;
     entry.num_inliers = edges[p].num_inliers;
+    entry.covered_cells = CoveredCells(cells[p]);
     entry.strength = edges[p].strength;
     entry.config = pairs[p].config;
     entry.rotations = rotations[p];

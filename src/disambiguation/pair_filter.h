@@ -19,6 +19,11 @@ struct PairFilterOptions {
   // --SiftMatching.min_num_inliers).
   int min_num_inliers = kDefaultMinNumInliers;
 
+  // An edge's strength counts the inliers in grid cells that at most this
+  // share of each image's verified pairs reach (inlier_grid.h): duplicate
+  // structure fills the cells most partners reach.
+  double distinctive_share = 0.35;
+
   // Inlier rays used for the cheirality test of each pair (evenly spaced
   // over the pair's inliers).
   int max_rays_per_pair = 200;
@@ -54,8 +59,9 @@ struct PairFilterEntry {
   std::string name1;
   std::string name2;
   int num_inliers = 0;
-  int strength = 0;  // ViewGraphEdge::strength
-  int config = 0;    // COLMAP's two-view configuration
+  int covered_cells = 0;  // CoveredCells (inlier_grid.h)
+  int strength = 0;       // ViewGraphEdge::strength
+  int config = 0;         // COLMAP's two-view configuration
   PairRotations rotations;
   LookalikeDecision decision;
 };

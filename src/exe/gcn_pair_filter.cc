@@ -42,6 +42,11 @@ int RunGcnPairFilter(int argc, char** argv) {
   manager.AddDefaultOption("PairFilter.max_backbone_hops",
                            &options.decision.max_backbone_hops,
                            "0: off");
+  manager.AddDefaultOption(
+      "PairFilter.distinctive_share",
+      &options.distinctive_share,
+      "edges are ordered by their inliers in cells at most this share of "
+      "each image's pairs reach");
   manager.AddDefaultOption("PairFilter.min_num_inliers",
                            &options.min_num_inliers);
   manager.AddDefaultOption("PairFilter.num_threads",

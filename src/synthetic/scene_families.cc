@@ -297,7 +297,7 @@ SyntheticWorld BuildTwinObjectsWorld(const WorldParams& params) {
   const Eigen::Vector2d size(rng.Uniform(1.2, 1.6), rng.Uniform(0.8, 1.2));
   const double height = rng.Uniform(1.2, 1.8);
   const double yaw = rng.Uniform(-0.3, 0.3);
-  const double half_spacing = rng.Uniform(2.2, 2.8);
+  const double half_spacing = rng.Uniform(2.5, 3.0);
   for (const double x : {-half_spacing, half_spacing}) {
     scene.AddBox(Eigen::Vector2d(x, 0.0),
                  size,
@@ -308,21 +308,22 @@ SyntheticWorld BuildTwinObjectsWorld(const WorldParams& params) {
                  top,
                  0.0);
   }
-  // The arc: in front of the table (negative y), from the first copy's side
-  // to the second's, each camera looking at a point that moves with it from
-  // the first copy to the second.
+  // The arc: in front of the table (negative y), close enough that a view
+  // holds little more than one copy; the first half of the cameras look at
+  // the first copy, the second half at the second.
   const int n = params.num_images;
   const double arc = rng.Uniform(0.45, 0.55) * M_PI;
-  const double radius = rng.Uniform(5.5, 6.5);
+  const double radius = rng.Uniform(4.0, 4.5);
   for (int i = 0; i < n; ++i) {
     const double a = n > 1 ? static_cast<double>(i) / (n - 1) : 0.5;
     const double jitter = rng.Uniform(-0.25, 0.25) / std::max(1, n - 1);
     const double angle = -0.5 * M_PI + (a + jitter - 0.5) * arc;
     const Eigen::Vector3d center(radius * std::cos(angle),
                                  radius * std::sin(angle),
-                                 rng.Uniform(2.2, 3.2));
+                                 rng.Uniform(2.0, 2.8));
+    const double copy_x = 2 * i < n ? -half_spacing : half_spacing;
     const Eigen::Vector3d look_at(
-        (2.0 * a - 1.0) * half_spacing + rng.Uniform(-0.3, 0.3),
+        copy_x + rng.Uniform(-0.3, 0.3),
         rng.Uniform(-0.3, 0.3),
         table_height + 0.5 * height + rng.Uniform(-0.2, 0.2));
     world.cameras.push_back(LookAtCamera(center,

@@ -61,9 +61,10 @@ SyntheticWorld BuildTwinPrintWorld(const WorldParams& params);
 
 // Two identical objects (same shape, same textures, same orientation) side
 // by side on a table in a room whose walls are all different; the cameras
-// sweep an arc in front of the table, turning from the first object to the
-// second, so early views see one copy and late views the other from similar
-// angles (like the books and cup-desk scenes of Roberts et al.).
+// sweep an arc close in front of the table, the first half looking at the
+// first copy and the second half at the second, so that views of different
+// copies from similar angles look alike (like the books and cup-desk scenes
+// of Roberts et al.).
 SyntheticWorld BuildTwinObjectsWorld(const WorldParams& params);
 
 // An unrelated little scene (own ground and boxes, no background ring) seen
