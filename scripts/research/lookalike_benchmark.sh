@@ -14,6 +14,11 @@
 # fraction of the circle the registered cameras cover (RingCoverage in
 # evaluation/alignment.h; -1.00 from a build without it), against the
 # ground truth's.
+#
+# BENCH_ARGS (environment) adds gcn_benchmark flags to both runs, e.g.
+# BENCH_ARGS="--ImageReader.camera_model PINHOLE --ImageReader.camera_params
+# 640,640,320,240" gives a synthetic scene its true intrinsics as trusted
+# (prior focal length), as EXIF does for photos.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 OUT="$(from_caller "$1")"
@@ -27,7 +32,7 @@ for filter in 0 1; do
     --output_path "$OUT/bench" --GcnMatching.filter_lookalikes "$filter" \
     --Benchmark.mapper_num_threads 1 --SiftExtraction.num_threads 2 \
     --SiftMatching.num_threads 2 --SiftExtraction.max_num_features 2048 \
-    > "$OUT/filter$filter.log" 2>&1
+    ${BENCH_ARGS:-} > "$OUT/filter$filter.log" 2>&1
   cp "$OUT/bench/results.json" "$OUT/$([ "$filter" = 1 ] && echo on || echo off).json"
 done
 python3 - "$OUT/off.json" "$OUT/on.json" <<'PY'

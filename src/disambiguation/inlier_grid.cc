@@ -96,7 +96,7 @@ int InlierCellReach::DistinctiveInliers(const int image1,
     count += reach_[image1][cell1] <= max_reach1 &&
              reach_[image2][cell2] <= max_reach2;
   }
-  return count;
+  return count >= kMinDistinctiveInliers ? count : 0;
 }
 
 }  // namespace colmap_gcn

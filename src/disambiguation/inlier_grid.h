@@ -22,6 +22,10 @@ constexpr int kInlierGrid = 8;
 // inliers in it (fewer are as likely stray matches as overlap).
 constexpr int kCellReachInliers = 3;
 
+// Fewer distinctive inliers than this are counted as none: cells just over
+// the reach threshold give a few by chance wherever every partner overlaps.
+constexpr int kMinDistinctiveInliers = 10;
+
 // The grid cell of each inlier in each image, in the pair's inlier order;
 // kNoCell for an inlier whose keypoint index is out of range.
 struct PairInlierCells {
@@ -53,7 +57,8 @@ class InlierCellReach {
   void AddPair(int image1, int image2, const PairInlierCells& cells);
 
   // The pair's inliers that lie, in both images, in cells reached by at most
-  // max(1, share * partners) of that image's verified pairs.
+  // max(1, share * partners) of that image's verified pairs; 0 when fewer
+  // than kMinDistinctiveInliers.
   int DistinctiveInliers(int image1,
                          int image2,
                          const PairInlierCells& cells,

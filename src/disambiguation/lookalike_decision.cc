@@ -10,9 +10,11 @@
 namespace colmap_gcn {
 namespace {
 
-// Stronger first: more strength, more inliers, then the smaller pair id.
+// Stronger first: more strength, more coverage, more inliers, then the
+// smaller pair id.
 bool Stronger(const ViewGraphEdge& a, const ViewGraphEdge& b) {
   if (a.strength != b.strength) return a.strength > b.strength;
+  if (a.coverage != b.coverage) return a.coverage > b.coverage;
   if (a.num_inliers != b.num_inliers) return a.num_inliers > b.num_inliers;
   return a.pair_id < b.pair_id;
 }

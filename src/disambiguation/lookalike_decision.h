@@ -22,12 +22,16 @@ struct ViewGraphEdge {
   int image2 = -1;
   int num_inliers = 0;
   // How strongly the pair overlaps: orders the edges (more first; ties by
-  // num_inliers, then pair_id). The filter counts the inliers that lie where
-  // few of either image's partners match (pair_filter.h,
+  // coverage, then num_inliers, then pair_id). The filter counts the inliers
+  // that lie where few of either image's partners match (pair_filter.h,
   // distinctive_share), so that a partner matching only the duplicated
   // structure every partner matches weighs less than one that also shares
   // the rest of the view.
   int strength = 0;
+  // The grid cells its inliers cover, the fewer of the two images: many
+  // matches on one small repeated object weigh less than matches spread
+  // over the whole view.
+  int coverage = 0;
   bool has_rotation = false;
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   std::vector<Eigen::Matrix3d> alternatives;

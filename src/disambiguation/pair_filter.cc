@@ -341,6 +341,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
     reach.AddPair(edges[p].image1, edges[p].image2, cells[p]);
   }
   for (size_t p = 0; p < pairs.size(); ++p) {
+    edges[p].coverage = CoveredCells(cells[p]);
     edges[p].strength = reach.DistinctiveInliers(
         edges[p].image1, edges[p].image2, cells[p], options.distinctive_share);
   }
@@ -352,7 +353,7 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
     entry.name1 = images[edges[p].image1].name;
     entry.name2 = images[edges[p].image2].name;
     entry.num_inliers = edges[p].num_inliers;
-    entry.covered_cells = CoveredCells(cells[p]);
+    entry.covered_cells = edges[p].coverage;
     entry.strength = edges[p].strength;
     entry.config = pairs[p].config;
     entry.rotations = rotations[p];
