@@ -84,6 +84,10 @@ int InlierCellReach::DistinctiveInliers(const int image1,
                                         const int image2,
                                         const PairInlierCells& cells,
                                         const double share) const {
+  if (std::min(num_partners_[image1], num_partners_[image2]) <
+      kMinDistinctivePartners) {
+    return 0;
+  }
   const int max_reach1 =
       std::max(1, static_cast<int>(std::floor(share * num_partners_[image1])));
   const int max_reach2 =

@@ -26,6 +26,10 @@ constexpr int kCellReachInliers = 3;
 // the reach threshold give a few by chance wherever every partner overlaps.
 constexpr int kMinDistinctiveInliers = 10;
 
+// An image with fewer verified pairs has no "few of its pairs": its pairs'
+// distinctive inliers count as none.
+constexpr int kMinDistinctivePartners = 6;
+
 // The grid cell of each inlier in each image, in the pair's inlier order;
 // kNoCell for an inlier whose keypoint index is out of range.
 struct PairInlierCells {
@@ -58,7 +62,8 @@ class InlierCellReach {
 
   // The pair's inliers that lie, in both images, in cells reached by at most
   // max(1, share * partners) of that image's verified pairs; 0 when fewer
-  // than kMinDistinctiveInliers.
+  // than kMinDistinctiveInliers, or when either image has fewer than
+  // kMinDistinctivePartners pairs.
   int DistinctiveInliers(int image1,
                          int image2,
                          const PairInlierCells& cells,

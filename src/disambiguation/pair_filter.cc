@@ -340,10 +340,16 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
   for (size_t p = 0; p < pairs.size(); ++p) {
     reach.AddPair(edges[p].image1, edges[p].image2, cells[p]);
   }
+  // Only pairs strong enough to be judged rank by it: a weak pair's few
+  // inliers at the edge of the view must not outrank a strong neighbour.
   for (size_t p = 0; p < pairs.size(); ++p) {
     edges[p].coverage = CoveredCells(cells[p]);
-    edges[p].strength = reach.DistinctiveInliers(
-        edges[p].image1, edges[p].image2, cells[p], options.distinctive_share);
+    if (edges[p].num_inliers >= options.decision.min_evidence_inliers) {
+      edges[p].strength = reach.DistinctiveInliers(edges[p].image1,
+                                                   edges[p].image2,
+                                                   cells[p],
+                                                   options.distinctive_share);
+    }
   }
   const std::vector<LookalikeDecision> decisions = DecideLookalikePairs(
       static_cast<int>(images.size()), edges, options.decision);

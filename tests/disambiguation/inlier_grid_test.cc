@@ -69,12 +69,26 @@ TEST(InlierGrid, DistinctiveInliersAreWhereFewPartnersReach) {
   const PairInlierCells lookalike_cells = Cells(PairAt(print));
   EXPECT_GE(CoveredCells(lookalike_cells), CoveredCells(neighbour_cells));
 
-  InlierCellReach reach(7);
+  // Images 1-6 have pairs of their own too, elsewhere in the view (the
+  // bottom-right cell), so that each has enough pairs to tell few from
+  // many.
+  const PairInlierCells elsewhere = Cells(PairAt(Block(7, 8, 7, 8, 5)));
+  const auto add_other_pairs = [&](InlierCellReach* reach) {
+    for (int image = 1; image <= 6; ++image) {
+      for (int other = 7; other < 12; ++other) {
+        reach->AddPair(image, other, elsewhere);
+      }
+    }
+  };
+  InlierCellReach reach(12);
   reach.AddPair(0, 1, nearest_cells);
+  // With fewer than kMinDistinctivePartners pairs an image has no "few".
+  EXPECT_EQ(reach.DistinctiveInliers(0, 1, nearest_cells, 0.35), 0);
   for (int image : {2, 3, 4}) reach.AddPair(0, image, neighbour_cells);
   for (int image : {5, 6}) reach.AddPair(0, image, lookalike_cells);
-  // Seen from image 0 alone (the partners' own sides count every cell
-  // once, so they do not limit): the room's 40 inliers are distinctive at
+  add_other_pairs(&reach);
+  // On the partners' side each cell of this pair is reached once, so they
+  // do not limit: the room's 40 inliers are distinctive at
   // share 0.35 (cells reached by at most 2 of 6 pairs), the print's are
   // not.
   EXPECT_EQ(reach.DistinctiveInliers(0, 1, nearest_cells, 0.35), 40);
@@ -83,7 +97,7 @@ TEST(InlierGrid, DistinctiveInliersAreWhereFewPartnersReach) {
   // Share 1: every inlier counts.
   EXPECT_EQ(reach.DistinctiveInliers(0, 5, lookalike_cells, 1.0), 240);
   // A few distinctive inliers are noise: counted as none.
-  InlierCellReach sparse(7);
+  InlierCellReach sparse(12);
   std::vector<Eigen::Vector2f> few = Block(2, 6, 1, 7, 150);
   for (const Eigen::Vector2f& p :
        Block(0, 1, 1, 4, kMinDistinctiveInliers - 1)) {
@@ -92,6 +106,7 @@ TEST(InlierGrid, DistinctiveInliersAreWhereFewPartnersReach) {
   const PairInlierCells few_cells = Cells(PairAt(few));
   sparse.AddPair(0, 1, few_cells);
   for (int image : {2, 3, 4, 5, 6}) sparse.AddPair(0, image, lookalike_cells);
+  add_other_pairs(&sparse);
   EXPECT_EQ(sparse.DistinctiveInliers(0, 1, few_cells, 0.35), 0);
 }
 
