@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # Replays the look-alike filter's tree and loop test (lookalike_decision.cc)
 # with other orderings of the backbone's edges, to compare them against the
-# truth (docs/lookalike.md, "The backbone: distinctive inliers"):
+# truth (docs/lookalike.md, "Tried and dropped"; it replays the loop test only,
+# not the view-parallax test):
 #
 #   colmap gcn_pair_filter --database_path DB --dry_run 1 \
 #       --PairFilter.pairs_csv_path PAIRS.csv

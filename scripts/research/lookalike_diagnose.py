@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # The look-alike filter's evidence against the truth (docs/lookalike.md,
-# "Why real pairs were rejected"):
+# "How it decides", "Where it fails"):
 #
 #   colmap gcn_pair_filter --database_path DB --dry_run 1 \
 #       --PairFilter.pairs_csv_path PAIRS.csv
@@ -9,7 +9,9 @@
 # Per COLMAP configuration: how far the rotation from E (or F) and the best
 # and worst of the homography's decompositions lie from the true relative
 # rotation; the tree edges whose rotation is wrong; and per rejected pair
-# whether its own rotation or the rotation chained along the tree is wrong.
+# whether its own rotation or the rotation chained along the tree is wrong;
+# the view parallax of matchable pairs and of pairs whose true rotation is
+# over 135 degrees (on an object ring, look-alikes), by strength.
 # LABELS.csv is gcn_benchmark's labels/labels.csv: "matchable" as the
 # benchmark counts it (overlap >= 0.25 or common-track ratio >= 0.15),
 # "wrong" for pairs it does not list (nothing shared), "weak" otherwise.
@@ -72,7 +74,7 @@ for r in rows:
     lab=labels.get((a,b),'wrong' if labels else '?')
     stats[r['config']].append((eE,min(eH) if eH else -1,max(eH) if eH else -1,int(r['num_h'])))
     T=tree_rot(r); eT=err(T,G) if T else -1
-    out.append((r['decision'],r['config'],a,b,r['num_inliers'],r['covered_cells'],float(r['rotation_error']),eE,eH,eC,r['in_tree'],lab,eT))
+    out.append((r['decision'],r['config'],a,b,r['num_inliers'],r['covered_cells'],float(r['rotation_error']),eE,eH,eC,r['in_tree'],lab,eT,float(r.get('view_parallax',-1)),ang(G)))
 def med(v):
     v=sorted(x for x in v if x>=0); return v[len(v)//2] if v else float('nan')
 print("config count | median err E/F vs GT | #E/F>10deg | median best-H | #bestH>10 | median worst-H | num_h dist | #no rotation within 30deg of GT")
@@ -93,3 +95,14 @@ for o in out:
         print(" %s %s cfg%s inl %s cells %s | loop err %.1f | E/F vs GT %.1f | H vs GT %s | chained vs GT %.1f | %s"%(o[2],o[3],o[1],o[4],o[5],o[6],o[7],[round(x,1) for x in o[8]],o[9],o[11]))
 rej=[o for o in out if o[0]!='kept']
 print("rejected %d: matchable %d wrong %d; pair wrong (E/F>15) %d, chain wrong(>15) %d"%(len(rej),sum(o[11]=='matchable' for o in rej),sum(o[11]=='wrong' for o in rej),sum(o[7]>15 for o in rej),sum(o[9]>15 for o in rej)))
+# The parallax test: per pair strength and true viewpoint change, the
+# measured view parallax (outside the tree, where it is defined).
+print("view parallax (pairs outside the tree): group | pairs | max parallax | rejected by view_parallax")
+for name,sel in (("matchable, >= 60 inliers",lambda o:o[11]=='matchable' and int(o[4])>=60),
+                 ("matchable, < 60 inliers",lambda o:o[11]=='matchable' and int(o[4])<60),
+                 ("true rotation > 135deg, < 60 inliers",lambda o:o[14]>135 and int(o[4])<60),
+                 ("true rotation > 135deg, >= 60 inliers",lambda o:o[14]>135 and int(o[4])>=60)):
+    v=[o for o in out if o[10]=='0' and o[13]>=0 and sel(o)]
+    print(" %s | %d | %s | %d"%(name,len(v),"%.1f"%max(o[13] for o in v) if v else '-',sum(o[0]=='view_parallax' for o in v)))
+kept_far=[o for o in out if o[0]=='kept' and o[14]>135]
+print("kept with true rotation > 135deg: %d (%s)"%(len(kept_far),", ".join("%s-%s %s inl"%(o[2],o[3],o[4]) for o in kept_far)))

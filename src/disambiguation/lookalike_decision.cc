@@ -1,6 +1,7 @@
 #include "disambiguation/lookalike_decision.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <queue>
 
@@ -140,6 +141,24 @@ struct RotationForest {
     return error;
   }
 
+  // Degrees between the edge's mean inlier rays, image 1's turned into
+  // image 2's frame by the chained rotation; -1 without rays or across
+  // trees.
+  double Parallax(const ViewGraphEdge& edge) const {
+    if (!edge.has_view_rays ||
+        component[edge.image1] != component[edge.image2]) {
+      return -1;
+    }
+    const Eigen::Matrix3d chained =
+        absolute[edge.image2] * absolute[edge.image1].transpose();
+    const double cosine = std::clamp((chained * edge.view_ray1)
+                                         .normalized()
+                                         .dot(edge.view_ray2.normalized()),
+                                     -1.0,
+                                     1.0);
+    return std::acos(cosine) * 180.0 / M_PI;
+  }
+
   std::vector<std::vector<std::pair<int, int>>> tree;
   std::vector<int> component;
   std::vector<Eigen::Matrix3d> absolute;
@@ -150,6 +169,7 @@ struct RotationForest {
 void LookalikeDecisionOptions::Check() const {
   CHECK_OPTION_GE(backbone_neighbors, 1);
   CHECK_OPTION_INTERVAL(max_rotation_error, 0.0, false, 180.0, true);
+  CHECK_OPTION_INTERVAL(max_view_parallax, 0.0, false, 180.0, true);
   CHECK_OPTION_GE(max_backbone_hops, 0);
   CHECK_OPTION_GE(min_evidence_inliers, 0);
 }
@@ -162,6 +182,8 @@ const char* LookalikeReasonName(const LookalikeReason reason) {
       return "rotation_loop";
     case LookalikeReason::kContext:
       return "context";
+    case LookalikeReason::kViewParallax:
+      return "view_parallax";
   }
   return "unknown";
 }
@@ -207,14 +229,24 @@ std::vector<LookalikeDecision> DecideLookalikePairs(
     const ViewGraphEdge& edge = edges[e];
     LookalikeDecision& decision = decisions[e];
     decision.rotation_error = forest.Error(edge);
+    decision.view_parallax = forest.Parallax(edge);
     if (options.max_backbone_hops > 0) {
       decision.backbone_hops = Hops(
           adjacency, edge.image1, edge.image2, static_cast<int>(e), &distance);
     }
-    if (decision.in_tree || edge.num_inliers < options.min_evidence_inliers) {
-      continue;
-    }
-    if (decision.rotation_error > options.max_rotation_error) {
+    if (decision.in_tree) continue;
+    // A strong pair is judged by its own rotation. A weak pair's rotation
+    // alone is not evidence (often ill-determined), nor are its rays alone
+    // (real weak pairs see a surface across wide angles, with the right
+    // rotation): both must say look-alike, or the rays when it has none.
+    if (edge.num_inliers < options.min_evidence_inliers) {
+      if (options.max_view_parallax < 180.0 &&
+          decision.view_parallax > options.max_view_parallax &&
+          (decision.rotation_error < 0 ||
+           decision.rotation_error > options.max_rotation_error)) {
+        decision.reason = LookalikeReason::kViewParallax;
+      }
+    } else if (decision.rotation_error > options.max_rotation_error) {
       decision.reason = LookalikeReason::kRotationLoop;
     } else if (options.max_backbone_hops > 0 &&
                (decision.backbone_hops < 0 ||

@@ -35,6 +35,12 @@ struct ViewGraphEdge {
   bool has_rotation = false;
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   std::vector<Eigen::Matrix3d> alternatives;
+  // The mean direction of its inliers' rays in each camera (unit vectors,
+  // camera coordinates), where both cameras' intrinsics are trusted: the
+  // parallax test needs no rotation of the pair's own.
+  bool has_view_rays = false;
+  Eigen::Vector3d view_ray1 = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d view_ray2 = Eigen::Vector3d::UnitZ();
 };
 
 // How the look-alike filter decides (docs/lookalike.md). One parameter set
@@ -49,9 +55,17 @@ struct LookalikeDecisionOptions {
   // look-alike (degrees).
   double max_rotation_error = 30.0;
 
-  // A pair with fewer inliers is never rejected: its rotations are too often
-  // ill-determined (inliers on a small patch; docs/lookalike.md).
+  // A pair with fewer inliers is never judged by its own rotation: it is too
+  // often ill-determined (inliers on a small patch; docs/lookalike.md).
   int min_evidence_inliers = 60;
+
+  // A pair with fewer than min_evidence_inliers outside the tree whose mean
+  // inlier rays, turned by the chained rotation, would see their common
+  // surface from directions more than this apart, and whose own rotation
+  // (if any) fails the loop test too, is a look-alike (degrees): a weak
+  // pair is judged by where its inliers lie as well as by its rotation,
+  // each unreliable alone (docs/lookalike.md). 180 turns it off.
+  double max_view_parallax = 100.0;
 
   // A pair whose images are more than this many backbone hops apart
   // (without the pair itself) is a look-alike; 0 turns this test off.
@@ -64,6 +78,7 @@ enum class LookalikeReason {
   kKept = 0,
   kRotationLoop = 1,  // its rotation contradicts the chained rotations
   kContext = 2,       // its images are far apart in the backbone
+  kViewParallax = 3,  // the chained rotation says its images face away
 };
 
 const char* LookalikeReasonName(LookalikeReason reason);
@@ -76,6 +91,10 @@ struct LookalikeDecision {
   // measured ones; -1 when either is missing (no rotation, or the images in
   // different trees).
   double rotation_error = -1;
+  // Degrees between the pair's mean inlier rays under the chained rotation
+  // (the angle at which the two cameras would see the matched surface); -1
+  // without view rays or across trees.
+  double view_parallax = -1;
   // Backbone hops between the images without this edge; -1 if unconnected.
   int backbone_hops = -1;
 

@@ -58,17 +58,12 @@ void InlierRays(const VerifiedTwoViewGeometry& pair,
 // F and the cameras' (possibly self-calibrated) intrinsics; and the
 // candidates its homography allows.
 void MeasureRotations(const VerifiedTwoViewGeometry& pair,
-                      const KeypointPositions& keypoints1,
-                      const KeypointPositions& keypoints2,
                       const PinholeIntrinsics& camera1,
                       const PinholeIntrinsics& camera2,
                       const bool use_E,
-                      const int max_rays,
+                      const Eigen::Matrix2Xd& rays1,
+                      const Eigen::Matrix2Xd& rays2,
                       PairRotations* rotations) {
-  Eigen::Matrix2Xd rays1;
-  Eigen::Matrix2Xd rays2;
-  InlierRays(
-      pair, keypoints1, keypoints2, camera1, camera2, max_rays, &rays1, &rays2);
   Eigen::Matrix3d E = pair.E;
   const bool has_E = pair.config == 2 && E.norm() >= 1e-12;
   bool has_essential = true;
@@ -86,6 +81,23 @@ void MeasureRotations(const VerifiedTwoViewGeometry& pair,
     const Eigen::Matrix3d H = camera2.K().inverse() * pair.H * camera1.K();
     rotations->homography = RotationsFromHomography(H, rays1, rays2);
   }
+}
+
+// The mean direction of the inlier rays in each camera (the parallax test,
+// lookalike_decision.h).
+void MeanViewRays(const Eigen::Matrix2Xd& rays1,
+                  const Eigen::Matrix2Xd& rays2,
+                  ViewGraphEdge* edge) {
+  if (rays1.cols() == 0) return;
+  Eigen::Vector3d sum1 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum2 = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < rays1.cols(); ++i) {
+    sum1 += rays1.col(i).homogeneous().normalized();
+    sum2 += rays2.col(i).homogeneous().normalized();
+  }
+  edge->has_view_rays = true;
+  edge->view_ray1 = sum1.normalized();
+  edge->view_ray2 = sum2.normalized();
 }
 
 // Which of a pair's rotations the tree may chain: a planar or panoramic
@@ -186,10 +198,11 @@ std::string CsvLine(const PairFilterEntry& entry) {
   std::ostringstream line;
   line << entry.name1 << ',' << entry.name2 << ',' << entry.num_inliers << ','
        << entry.covered_cells << ',' << entry.strength << ','
-       << entry.decision.rotation_error << ',' << entry.decision.backbone_hops
-       << ',' << entry.decision.in_backbone << ',' << entry.decision.in_tree
-       << ',' << LookalikeReasonName(entry.decision.reason) << ','
-       << entry.config << ','
+       << entry.decision.rotation_error << ',' << entry.decision.view_parallax
+       << ',' << entry.decision.backbone_hops << ','
+       << entry.decision.in_backbone << ',' << entry.decision.in_tree << ','
+       << LookalikeReasonName(entry.decision.reason) << ',' << entry.config
+       << ','
        << CsvRotation(entry.rotations.has_essential, entry.rotations.essential)
        << ',' << entry.rotations.homography.size();
   for (size_t i = 0; i < 2; ++i) {
@@ -207,7 +220,7 @@ std::string CsvLine(const PairFilterEntry& entry) {
 void WritePairsCsv(const PairFilterReport& report, const std::string& path) {
   std::string csv =
       "name1,name2,num_inliers,covered_cells,distinctive_inliers,rotation_"
-      "error,backbone_hops,in_backbone,"
+      "error,view_parallax,backbone_hops,in_backbone,"
       "in_tree,decision,config,ew,ex,ey,ez,num_h,h1w,h1x,h1y,h1z,h2w,h2x,h2y,"
       "h2z\n";
   for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
@@ -320,16 +333,26 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                                       sizes.at(camera1),
                                       sizes.at(camera2));
         if (rotation_trusted.at(camera1) && rotation_trusted.at(camera2)) {
+          Eigen::Matrix2Xd rays1;
+          Eigen::Matrix2Xd rays2;
+          InlierRays(pair,
+                     keypoints[edge.image1],
+                     keypoints[edge.image2],
+                     cameras.at(camera1),
+                     cameras.at(camera2),
+                     options.max_rays_per_pair,
+                     &rays1,
+                     &rays2);
           MeasureRotations(
               pair,
-              keypoints[edge.image1],
-              keypoints[edge.image2],
               cameras.at(camera1),
               cameras.at(camera2),
               trusted_focal.at(camera1) && trusted_focal.at(camera2),
-              options.max_rays_per_pair,
+              rays1,
+              rays2,
               &rotations[p]);
           AssignRotations(pair.config, rotations[p], &edge);
+          MeanViewRays(rays1, rays2, &edge);
         }
         progress.Increment();
       });
@@ -402,7 +425,10 @@ PairFilterReport FilterLookalikePairs(const std::string& database_path,
       HiddenTwoViewGeometry pair;
       pair.pair_id = entry.pair_id;
       pair.reason = LookalikeReasonName(entry.decision.reason);
-      pair.score = entry.decision.rotation_error;
+      // The degrees that decided it.
+      pair.score = entry.decision.reason == LookalikeReason::kViewParallax
+                       ? entry.decision.view_parallax
+                       : entry.decision.rotation_error;
       hidden.push_back(pair);
     }
     DatabaseWorkingCopy working_copy(database_path);

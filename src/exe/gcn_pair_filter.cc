@@ -36,9 +36,15 @@ int RunGcnPairFilter(int argc, char** argv) {
   manager.AddDefaultOption("PairFilter.max_rotation_error",
                            &options.decision.max_rotation_error,
                            "degrees");
-  manager.AddDefaultOption("PairFilter.min_evidence_inliers",
-                           &options.decision.min_evidence_inliers,
-                           "pairs with fewer inliers are never rejected");
+  manager.AddDefaultOption(
+      "PairFilter.min_evidence_inliers",
+      &options.decision.min_evidence_inliers,
+      "pairs with fewer inliers face the parallax test instead");
+  manager.AddDefaultOption(
+      "PairFilter.max_view_parallax",
+      &options.decision.max_view_parallax,
+      "degrees the chained rotation may turn a weak pair's inlier rays "
+      "apart (with its rotation off too); 180: off");
   manager.AddDefaultOption("PairFilter.max_backbone_hops",
                            &options.decision.max_backbone_hops,
                            "0: off");

@@ -12,8 +12,10 @@
 namespace colmap_gcn {
 namespace {
 
-Eigen::Matrix3d RotZ(double degrees) {
-  return Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d::UnitZ())
+// A turn about the vertical, the camera's y axis (COLMAP: x right, y down,
+// z forward).
+Eigen::Matrix3d RotY(double degrees) {
+  return Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d::UnitY())
       .toRotationMatrix();
 }
 
@@ -47,10 +49,10 @@ RingGraph MakeRing(int n, int reach, bool twins, uint64_t seed) {
     edge.pair_id = static_cast<image_pair_t>(edge.image1) * 1000 + edge.image2;
     edge.num_inliers = inliers;
     edge.has_rotation = true;
-    // Camera k has world-to-camera rotation RotZ(-k * step); the measured
+    // Camera k has world-to-camera rotation RotY(-k * step); the measured
     // relative rotation of (image1, image2) is R2 * R1^T.
     const double angle = i < j ? measured : -measured;
-    edge.rotation = Noise(&rng, 1.0) * RotZ(-angle);
+    edge.rotation = Noise(&rng, 1.0) * RotY(-angle);
     graph.edges.push_back(edge);
     graph.lookalike.push_back(fake);
   };
@@ -141,11 +143,11 @@ TEST(LookalikeDecision, APairIsKeptWhenAnyRotationItsGeometryAllowsAgrees) {
   // alternatives that do not agree do not.
   RingGraph graph = MakeRing(24, 3, /*twins=*/true, 6);
   const Eigen::Matrix3d flip =
-      Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix();
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     if (!graph.lookalike[e]) continue;
     ViewGraphEdge& edge = graph.edges[e];
-    edge.alternatives.push_back(edge.rotation * RotZ(20.0));
+    edge.alternatives.push_back(edge.rotation * RotY(20.0));
     if (edge.image1 % 2 == 0) {
       edge.alternatives.push_back(flip * edge.rotation);  // the true one
     }
@@ -165,7 +167,7 @@ TEST(LookalikeDecision, PairsWithOnlyAlternativesStayOutOfTheTree) {
     if (!graph.lookalike[e]) continue;
     // Ambiguous twins: no rotation to chain, only the (wrong) candidates.
     ViewGraphEdge& edge = graph.edges[e];
-    edge.alternatives = {edge.rotation, edge.rotation * RotZ(10.0)};
+    edge.alternatives = {edge.rotation, edge.rotation * RotY(10.0)};
     edge.has_rotation = false;
     edge.num_inliers = 1000;  // stronger than every real pair
   }
@@ -179,7 +181,7 @@ TEST(LookalikeDecision, PairsWithOnlyAlternativesStayOutOfTheTree) {
   }
 }
 
-TEST(LookalikeDecision, PairsWithFewInliersAreNeverRejected) {
+TEST(LookalikeDecision, PairsWithFewInliersAreNotJudgedByTheirRotation) {
   RingGraph graph = MakeRing(24, 3, /*twins=*/true, 8);
   LookalikeDecisionOptions options;
   for (size_t e = 0; e < graph.edges.size(); ++e) {
@@ -213,6 +215,68 @@ TEST(LookalikeDecision, ContextTestRejectsPairsFarApartInTheBackbone) {
   }
 }
 
+// Inlier rays of a camera k on the ring of MakeRing: it sees the object at
+// its image centre (camera z), whatever pair it is in.
+void LookAtTheCentre(std::vector<ViewGraphEdge>* edges) {
+  for (ViewGraphEdge& edge : *edges) {
+    edge.has_view_rays = true;
+    edge.view_ray1 = Eigen::Vector3d(0.05, -0.02, 1.0).normalized();
+    edge.view_ray2 = Eigen::Vector3d(-0.05, 0.01, 1.0).normalized();
+  }
+}
+
+TEST(LookalikeDecision, WeakTwinPairsFacingAwayFailTheParallaxTest) {
+  RingGraph graph = MakeRing(24, 3, /*twins=*/true, 6);
+  LookAtTheCentre(&graph.edges);
+  // The twin pairs are too weak for their own rotation to count, and their
+  // rotation is ill-determined: only where their rays point is evidence.
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (!graph.lookalike[e]) continue;
+    graph.edges[e].num_inliers = 30;
+    graph.edges[e].has_rotation = false;
+  }
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(24, graph.edges, LookalikeDecisionOptions());
+  for (size_t e = 0; e < decisions.size(); ++e) {
+    EXPECT_EQ(decisions[e].Rejected(), graph.lookalike[e])
+        << graph.edges[e].image1 << "-" << graph.edges[e].image2 << " parallax "
+        << decisions[e].view_parallax;
+    if (graph.lookalike[e]) {
+      EXPECT_EQ(decisions[e].reason, LookalikeReason::kViewParallax);
+      EXPECT_GT(decisions[e].view_parallax, 150.0);
+    } else {
+      // Real pairs up to 3 steps (45 degrees) apart.
+      EXPECT_LT(decisions[e].view_parallax, 60.0);
+    }
+  }
+  // 180 degrees turns the test off: weak pairs are then kept.
+  LookalikeDecisionOptions off;
+  off.max_view_parallax = 180.0;
+  for (const LookalikeDecision& decision :
+       DecideLookalikePairs(24, graph.edges, off)) {
+    EXPECT_FALSE(decision.Rejected());
+  }
+}
+
+TEST(LookalikeDecision, PairsWhoseRotationAgreesAreKeptWhateverTheirRays) {
+  RingGraph graph = MakeRing(24, 3, /*twins=*/false, 9);
+  LookAtTheCentre(&graph.edges);
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    // Rays that say the images face away, on pairs whose rotation agrees,
+    // strong and weak.
+    ViewGraphEdge& edge = graph.edges[e];
+    edge.view_ray2 = -edge.view_ray2;
+    if (e % 2 == 1) edge.num_inliers = 30;
+  }
+  for (const LookalikeDecision& decision :
+       DecideLookalikePairs(24, graph.edges, LookalikeDecisionOptions())) {
+    EXPECT_FALSE(decision.Rejected());
+    if (!decision.in_tree) {
+      EXPECT_GT(decision.view_parallax, 120.0);
+    }
+  }
+}
+
 TEST(LookalikeDecision, BadOptionsAreNamed) {
   LookalikeDecisionOptions options;
   options.backbone_neighbors = 0;
@@ -222,6 +286,9 @@ TEST(LookalikeDecision, BadOptionsAreNamed) {
   EXPECT_THROW(options.Check(), std::exception);
   options = LookalikeDecisionOptions();
   options.min_evidence_inliers = -1;
+  EXPECT_THROW(options.Check(), std::exception);
+  options = LookalikeDecisionOptions();
+  options.max_view_parallax = 0;
   EXPECT_THROW(options.Check(), std::exception);
 }
 
