@@ -106,3 +106,4 @@ for name,sel in (("matchable, >= 60 inliers",lambda o:o[11]=='matchable' and int
     print(" %s | %d | %s | %d"%(name,len(v),"%.1f"%max(o[13] for o in v) if v else '-',sum(o[0]=='view_parallax' for o in v)))
 kept_far=[o for o in out if o[0]=='kept' and o[14]>135]
 print("kept with true rotation > 135deg: %d (%s)"%(len(kept_far),", ".join("%s-%s %s inl"%(o[2],o[3],o[4]) for o in kept_far)))
+print("rejected by reason and label:", dict(sorted(collections.Counter((o[0], o[11]) for o in rej).items())))

@@ -151,11 +151,9 @@ struct RotationForest {
     }
     const Eigen::Matrix3d chained =
         absolute[edge.image2] * absolute[edge.image1].transpose();
-    const double cosine = std::clamp((chained * edge.view_ray1)
-                                         .normalized()
-                                         .dot(edge.view_ray2.normalized()),
-                                     -1.0,
-                                     1.0);
+    // Both rays are unit vectors, and a rotation keeps them so.
+    const double cosine =
+        std::clamp((chained * edge.view_ray1).dot(edge.view_ray2), -1.0, 1.0);
     return std::acos(cosine) * 180.0 / M_PI;
   }
 
@@ -240,8 +238,8 @@ std::vector<LookalikeDecision> DecideLookalikePairs(
     // (real weak pairs see a surface across wide angles, with the right
     // rotation): both must say look-alike, or the rays when it has none.
     if (edge.num_inliers < options.min_evidence_inliers) {
-      if (options.max_view_parallax < 180.0 &&
-          decision.view_parallax > options.max_view_parallax &&
+      // A parallax never exceeds 180: max_view_parallax 180 turns it off.
+      if (decision.view_parallax > options.max_view_parallax &&
           (decision.rotation_error < 0 ||
            decision.rotation_error > options.max_rotation_error)) {
         decision.reason = LookalikeReason::kViewParallax;

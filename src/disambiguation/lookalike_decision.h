@@ -36,8 +36,8 @@ struct ViewGraphEdge {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   std::vector<Eigen::Matrix3d> alternatives;
   // The mean direction of its inliers' rays in each camera (unit vectors,
-  // camera coordinates), where both cameras' intrinsics are trusted: the
-  // parallax test needs no rotation of the pair's own.
+  // camera coordinates), where both cameras' focal lengths are trusted or
+  // self-calibrated: the parallax test needs no rotation of the pair's own.
   bool has_view_rays = false;
   Eigen::Vector3d view_ray1 = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d view_ray2 = Eigen::Vector3d::UnitZ();
