@@ -6,9 +6,11 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "controllers/sift_matching_flags.h"
 #include "pairing/pairs_io.h"
 #include "scene/database.h"
 #include "scene/database_working_copy.h"
+#include "scene/two_view_geometry_store.h"
 #include "util/error.h"
 #include "util/file.h"
 #include "util/file_lock.h"
@@ -95,10 +97,13 @@ GeometryMap VerifyMatchedBlock(const std::string& work_path,
   return geometries;
 }
 
-// COLMAP's matches_importer on the pairs in blocks of ProgressBlockSize,
-// into the working copy; each block commits and is verified before the
-// next. A signal between blocks is reported like one during COLMAP's run.
-// Returns the copy's geometries after the last block.
+// The pairs in blocks of ProgressBlockSize, into the working copy: each
+// block matched by MatchPairsExactly (deterministic, unlike COLMAP 3.8's
+// FLANN matching) and imported raw, so COLMAP's matches_importer only
+// verifies; --SiftMatching.guided_matching 1, which needs COLMAP's own
+// matcher, matches with COLMAP instead. Each block commits and is verified
+// before the next. A signal between blocks is reported like one during COLMAP's
+// run. Returns the copy's geometries after the last block.
 GeometryMap RunMatchesImporter(const ColmapRunner& colmap,
                                DatabaseWorkingCopy* working_copy,
                                const std::vector<DatabaseImage>& images,
@@ -110,28 +115,72 @@ GeometryMap RunMatchesImporter(const ColmapRunner& colmap,
   const size_t block_size = ProgressBlockSize(pairs.size(), options.block_size);
   const size_t num_blocks = (pairs.size() + block_size - 1) / block_size;
   const InterruptCheckpoints checkpoints;
+  const ExactMatchingOptions matching_options =
+      ExactMatchingFromFlags(options.matching, options.colmap_args);
+  const int num_threads = static_cast<int>(
+      SiftMatchingValue(options.colmap_args, "num_threads", -1));
+  const bool colmap_matching =
+      SiftMatchingValue(options.colmap_args, "guided_matching", 0) != 0;
+  if (colmap_matching) {
+    LOG(INFO) << "matching with COLMAP's matcher (guided matching): its "
+                 "matches vary a little from run to run";
+  }
+  const std::vector<image_pair_t> matched_ids =
+      Database(work_path).ReadMatchesPairIds();
   GeometryMap geometries;
   ProgressLogger progress(pairs.size(), "matching", "pairs");
   for (size_t block = 0; block < num_blocks; ++block) {
     const auto begin = pairs.begin() + block * block_size;
     const auto end =
         pairs.begin() + std::min(pairs.size(), (block + 1) * block_size);
-    const std::vector<ImagePair> block_pairs(begin, end);
-    std::vector<std::string> args = {"--database_path",
-                                     work_path,
-                                     "--match_list_path",
-                                     todo_path,
-                                     "--match_type",
-                                     "pairs",
-                                     "--SiftMatching.min_num_inliers",
-                                     std::to_string(options.min_num_inliers)};
-    args.insert(
-        args.end(), options.colmap_args.begin(), options.colmap_args.end());
-    try {
-      ThrowIfInterrupted("before colmap matches_importer ran");
-      WritePairsFile(todo_path, block_pairs, images);
+    // As COLMAP stores them: the smaller id first.
+    std::vector<ImagePair> block_pairs;
+    for (auto it = begin; it != end; ++it) {
+      block_pairs.emplace_back(std::min(it->first, it->second),
+                               std::max(it->first, it->second));
+    }
+    // Pairs whose matches an interrupted run (or the user's database) holds
+    // without a geometry are only verified: a raw import would write their
+    // matches twice.
+    std::vector<ImagePair> to_match;
+    std::vector<ImagePair> to_verify;
+    for (const ImagePair& pair : block_pairs) {
+      const bool has_matches =
+          std::binary_search(matched_ids.begin(),
+                             matched_ids.end(),
+                             ImagePairToPairId(pair.first, pair.second));
+      (colmap_matching || has_matches ? to_verify : to_match).push_back(pair);
+    }
+    const auto import = [&](const std::string& match_type) {
+      std::vector<std::string> args = {"--database_path",
+                                       work_path,
+                                       "--match_list_path",
+                                       todo_path,
+                                       "--match_type",
+                                       match_type,
+                                       "--SiftMatching.min_num_inliers",
+                                       std::to_string(options.min_num_inliers)};
+      args.insert(
+          args.end(), options.colmap_args.begin(), options.colmap_args.end());
       working_copy->MarkWritten();
       colmap.Run("matches_importer", args);
+    };
+    try {
+      ThrowIfInterrupted("before colmap matches_importer ran");
+      if (!to_match.empty()) {
+        std::vector<FeatureMatches> matches;
+        {
+          const TwoViewGeometryStore copy(work_path);
+          matches =
+              MatchPairsExactly(copy, to_match, matching_options, num_threads);
+        }
+        WriteRawMatchesFile(todo_path, to_match, matches, images);
+        import("raw");
+      }
+      if (!to_verify.empty()) {
+        WritePairsFile(todo_path, to_verify, images);
+        import("pairs");
+      }
       geometries = VerifyMatchedBlock(work_path, images, block_pairs);
       ThrowIfInterrupted("after colmap matches_importer ran");
     } catch (const Error& error) {
@@ -330,42 +379,46 @@ PairMatchingSummary MatchAllPairs(const ColmapRunner& colmap,
   return summary;
 }
 
-// How a round's pairs verified, for Observe(); a pair COLMAP kept no row
-// for stays at PairVerification's defaults (unverified).
-// Reports the pairs the look-alike filter rejects, among all verified pairs
-// of the working copy so far, as unverified.
-void MarkLookalikesUnverified(const std::string& work_path,
-                              const PairMatchingOptions& options,
-                              std::vector<PairVerification>* verifications) {
+// How a round's pairs verified, for Observe(), by the deterministic
+// verification; `verified` collects every verified pair of the run so far.
+// With options.lookalikes_unverified, the pairs the look-alike filter
+// rejects among all of them reach the generator as unverified.
+std::vector<PairVerification> VerifyRound(
+    const std::string& work_path,
+    const std::vector<ImagePair>& round_pairs,
+    const PairMatchingOptions& options,
+    const ExactVerificationOptions& verification_options,
+    std::vector<VerifiedTwoViewGeometry>* verified) {
+  const TwoViewGeometryStore copy(work_path);
+  const std::vector<VerifiedTwoViewGeometry> round =
+      VerifyPairsExactly(copy, round_pairs, verification_options);
+  std::vector<PairVerification> verifications;
+  verifications.reserve(round.size());
+  for (const VerifiedTwoViewGeometry& geometry : round) {
+    PairVerification verification;
+    verification.image_id1 = geometry.image_id1;
+    verification.image_id2 = geometry.image_id2;
+    verification.config = geometry.config;
+    verification.num_inliers = geometry.inliers.rows();
+    verifications.push_back(verification);
+    if (IsVerifiedTwoViewGeometry(geometry.config,
+                                  geometry.inliers.rows(),
+                                  options.min_num_inliers)) {
+      verified->push_back(geometry);
+    }
+  }
+  if (!options.lookalikes_unverified) return verifications;
   PairFilterOptions filter_options = options.lookalike_filter;
   filter_options.min_num_inliers = options.min_num_inliers;
-  const TwoViewGeometryStore copy(work_path);
   const std::vector<image_pair_t> rejected =
-      RejectedPairIds(FindLookalikePairs(copy, filter_options));
-  for (PairVerification& verification : *verifications) {
+      RejectedPairIds(FindLookalikePairs(copy, *verified, filter_options));
+  for (PairVerification& verification : verifications) {
     if (std::binary_search(rejected.begin(),
                            rejected.end(),
                            ImagePairToPairId(verification.image_id1,
                                              verification.image_id2))) {
       verification.config = 0;
     }
-  }
-}
-
-std::vector<PairVerification> Verifications(const std::vector<ImagePair>& pairs,
-                                            const GeometryMap& geometries) {
-  std::vector<PairVerification> verifications;
-  verifications.reserve(pairs.size());
-  for (const ImagePair& pair : pairs) {
-    PairVerification verification;
-    verification.image_id1 = pair.first;
-    verification.image_id2 = pair.second;
-    const auto it = geometries.find(ImagePairToPairId(pair.first, pair.second));
-    if (it != geometries.end()) {
-      verification.config = it->second.config;
-      verification.num_inliers = it->second.num_inliers;
-    }
-    verifications.push_back(verification);
   }
   return verifications;
 }
@@ -423,6 +476,10 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
               << " matched pairs answer the rounds they were chosen in";
   }
 
+  const ExactVerificationOptions verification_options =
+      ExactVerificationFromFlags(
+          options.verification, options.colmap_args, options.min_num_inliers);
+  std::vector<VerifiedTwoViewGeometry> verified;
   std::vector<ImagePair> attempted;
   std::unordered_set<image_pair_t> attempted_ids;
   generator->Reset();
@@ -461,12 +518,10 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
                                       /*stop_between_blocks=*/false);
       summary.matching_seconds += timer.ElapsedSeconds();
     }
-    std::vector<PairVerification> verifications =
-        Verifications(round_pairs, geometries);
-    if (options.lookalikes_unverified) {
-      MarkLookalikesUnverified(work_path, options, &verifications);
-    }
     generator_timer.Restart();
+    const std::vector<PairVerification> verifications = VerifyRound(
+        work_path, round_pairs, options, verification_options, &verified);
+    summary.verification_seconds += generator_timer.ElapsedSeconds();
     generator->Observe(verifications);
     generator_seconds += generator_timer.ElapsedSeconds();
 
@@ -476,6 +531,11 @@ PairMatchingSummary MatchPairGenerator(const ColmapRunner& colmap,
     if (!generator->HasFinished()) StopPointForTests("matching");
   }
   summary.generator_seconds = generator_seconds;
+  LOG(INFO) << "the rounds decided on their own verification of "
+            << attempted.size() << " pairs, "
+            << ProgressLogger::FormatDuration(summary.verification_seconds)
+            << " (matching and COLMAP's verification "
+            << ProgressLogger::FormatDuration(summary.matching_seconds) << ")";
   summary.num_attempted_pairs = attempted.size();
   summary.num_verified_pairs =
       CountVerifiedPairs(attempted, geometries, options.min_num_inliers);

@@ -8,6 +8,7 @@
 #include "pairing/pairing.h"
 #include "scene/database.h"
 #include "util/types.h"
+#include "verification/pair_verification.h"
 
 namespace colmap_gcn {
 
@@ -40,6 +41,18 @@ struct PairMatchingOptions {
   bool lookalikes_unverified = false;
   PairFilterOptions lookalike_filter;
 
+  // The features are matched here, exhaustively (MatchPairsExactly: the
+  // same matches on every run, unlike COLMAP 3.8's approximate search), and
+  // COLMAP verifies them (`matches_importer --match_type raw`). Generators
+  // that use verification decide on a deterministic verification of those
+  // matches (verification/pair_verification.h), not on COLMAP's, whose
+  // RANSAC differs from run to run. Both follow the --SiftMatching.* values
+  // in colmap_args (max_ratio, max_distance, cross_check; max_error,
+  // confidence, max_num_trials, min_inlier_ratio), and min_num_inliers
+  // above.
+  ExactMatchingOptions matching;
+  ExactVerificationOptions verification;
+
   void Check() const;
 };
 
@@ -54,6 +67,8 @@ struct PairMatchingSummary {
   // for, and the time spent in the generator between them.
   size_t num_rounds = 0;
   double generator_seconds = 0;
+  // Of generator_seconds: the deterministic verification of the rounds.
+  double verification_seconds = 0;
 
   double UsefulRatio() const {
     return num_attempted_pairs == 0

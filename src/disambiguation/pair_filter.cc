@@ -240,6 +240,16 @@ void PairFilterOptions::Check() const {
 
 PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                                     const PairFilterOptions& options) {
+  return FindLookalikePairs(
+      database,
+      database.ReadVerifiedTwoViewGeometries(options.min_num_inliers),
+      options);
+}
+
+PairFilterReport FindLookalikePairs(
+    const TwoViewGeometryStore& database,
+    const std::vector<VerifiedTwoViewGeometry>& verified_pairs,
+    const PairFilterOptions& options) {
   options.Check();
   const Timer timer;
   PairFilterReport report;
@@ -270,8 +280,20 @@ PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                  ", which is not in the cameras table");
     }
   }
-  const std::vector<VerifiedTwoViewGeometry> pairs =
-      database.ReadVerifiedTwoViewGeometries(options.min_num_inliers);
+  // Verified by the same rule as the database's rows, ordered by pair id.
+  std::vector<VerifiedTwoViewGeometry> pairs;
+  for (const VerifiedTwoViewGeometry& pair : verified_pairs) {
+    if (IsVerifiedTwoViewGeometry(
+            pair.config, pair.inliers.rows(), options.min_num_inliers)) {
+      pairs.push_back(pair);
+    }
+  }
+  std::sort(
+      pairs.begin(),
+      pairs.end(),
+      [](const VerifiedTwoViewGeometry& a, const VerifiedTwoViewGeometry& b) {
+        return a.pair_id < b.pair_id;
+      });
   report.num_verified_pairs = pairs.size();
   report.num_already_hidden = database.ReadHiddenPairs().size();
 

@@ -90,6 +90,15 @@ struct PairFilterReport {
 PairFilterReport FindLookalikePairs(const TwoViewGeometryStore& database,
                                     const PairFilterOptions& options);
 
+// The same decision on given verified pairs (each pair once, image_id1 <
+// image_id2) instead of the database's two_view_geometries, with the
+// database's images, cameras and keypoints: for a caller that verified
+// pairs itself (the adaptive loop, verification/pair_verification.h).
+PairFilterReport FindLookalikePairs(
+    const TwoViewGeometryStore& database,
+    const std::vector<VerifiedTwoViewGeometry>& verified_pairs,
+    const PairFilterOptions& options);
+
 // The rejected pairs' ids (sorted), for a caller that must not trust them
 // (the adaptive pairing loop).
 std::vector<image_pair_t> RejectedPairIds(const PairFilterReport& report);

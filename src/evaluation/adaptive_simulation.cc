@@ -42,6 +42,24 @@ PairVerification VerificationTable::Lookup(image_t image_id1,
   return verification;
 }
 
+void VerificationTable::Reverify(const TwoViewGeometryStore& database,
+                                 const ExactVerificationOptions& options) {
+  std::vector<image_pair_t> pair_ids;
+  std::vector<ImagePair> pairs;
+  for (const auto& [pair_id, info] : geometries_) pair_ids.push_back(pair_id);
+  std::sort(pair_ids.begin(), pair_ids.end());
+  for (const image_pair_t pair_id : pair_ids) {
+    pairs.push_back(PairIdToImagePair(pair_id));
+  }
+  const std::vector<VerifiedTwoViewGeometry> verified =
+      VerifyPairsExactly(database, pairs, options);
+  for (const VerifiedTwoViewGeometry& geometry : verified) {
+    TwoViewGeometryInfo& info = geometries_.at(geometry.pair_id);
+    info.config = geometry.config;
+    info.num_inliers = geometry.inliers.rows();
+  }
+}
+
 const std::string& VerificationTable::Name(image_t image_id) const {
   const auto it = image_index_.find(image_id);
   if (it == image_index_.end()) ThrowError("no image with id ", image_id);
@@ -287,7 +305,11 @@ AdaptiveSimulationReport RunAdaptiveSimulation(
   const GcnMatchingOptions matching = WithoutCaches(options.matching);
   RecoverHotJournal(options.database_path);
   const Database database(options.database_path);
-  const VerificationTable table(database);
+  VerificationTable table(database);
+  if (options.exact_verification && table.NumGeometries() > 0) {
+    table.Reverify(TwoViewGeometryStore(options.database_path),
+                   ExactVerificationOptions());
+  }
   // Without verifications every replayed pair would count as failed and the
   // table would be all zeros.
   if (table.NumGeometries() == 0) {

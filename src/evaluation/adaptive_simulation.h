@@ -8,6 +8,8 @@
 #include "evaluation/labels.h"
 #include "pairing/pairing.h"
 #include "scene/database.h"
+#include "scene/two_view_geometry_store.h"
+#include "verification/pair_verification.h"
 
 namespace colmap_gcn {
 
@@ -30,6 +32,11 @@ class VerificationTable {
   // order, smaller id first; sorted): everything a loop that counts strong
   // verifications as positives can learn as one.
   std::vector<ImagePair> StrongPairs(int strong_cut) const;
+  // Replaces every row by the loop's own deterministic verification of that
+  // pair (verification/pair_verification.h) from the database's features,
+  // so that a replay sees what the loop run by gcn_matcher decides on.
+  void Reverify(const TwoViewGeometryStore& database,
+                const ExactVerificationOptions& options);
 
  private:
   std::vector<DatabaseImage> images_;
@@ -87,6 +94,9 @@ struct AdaptiveSimulationOptions {
   // Also evaluate the single-shot GCN, its top-TAM scores, kNN at equal
   // TAM, graphmatch and exhaustive matching at the same strong cut.
   bool compare = true;
+  // Replay on the loop's deterministic verification of every matched pair
+  // (as gcn_matcher's loop decides); false: on COLMAP's rows as stored.
+  bool exact_verification = true;
   GcnMatchingOptions matching;
 };
 

@@ -46,7 +46,8 @@ int RunGcnAdaptiveSimulator(int argc, char** argv) {
       "gcn_adaptive_simulator",
       "Replays --GcnMatching.pairing adaptive or graphmatch on an "
       "exhaustively matched database without running COLMAP (matching a "
-      "pair = reading its two_view_geometries row) and prints every round, "
+      "pair = verifying its features as the loop does, or reading its "
+      "two_view_geometries row) and prints every round, "
       "then the same number of pairs chosen by the single-shot GCN and by "
       "kNN. The database is only read.");
   manager.AddRequiredOption("database_path",
@@ -60,6 +61,11 @@ int RunGcnAdaptiveSimulator(int argc, char** argv) {
       "compare",
       &options.compare,
       "also evaluate gcn, top-TAM GCN scores, kNN at equal TAM, graphmatch");
+  manager.AddDefaultOption(
+      "exact_verification",
+      &options.exact_verification,
+      "replay on the loop's own deterministic verification of each matched "
+      "pair, as gcn_matcher decides (0: on COLMAP's stored rows)");
   AddGcnMatchingOptions(&manager, &options.matching);
   if (!manager.Parse(argc, argv)) {
     return 0;

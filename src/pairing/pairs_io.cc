@@ -85,4 +85,36 @@ void WritePairsFile(const std::string& path,
   WriteFileAtomically(path, contents.str());
 }
 
+void WriteRawMatchesFile(const std::string& path,
+                         const std::vector<ImagePair>& pairs,
+                         const std::vector<FeatureMatches>& matches,
+                         const std::vector<DatabaseImage>& images) {
+  THROW_CHECK(matches.size() == pairs.size());
+  std::unordered_map<image_t, const std::string*> id_to_name;
+  for (const auto& image : images) {
+    id_to_name.emplace(image.image_id, &image.name);
+  }
+  std::string contents;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const auto it1 = id_to_name.find(pairs[i].first);
+    const auto it2 = id_to_name.find(pairs[i].second);
+    if (it1 == id_to_name.end() || it2 == id_to_name.end()) {
+      ThrowError("pair (",
+                 pairs[i].first,
+                 ", ",
+                 pairs[i].second,
+                 ") names an image id not in the database");
+    }
+    CheckPairsFileImageName(*it1->second);
+    CheckPairsFileImageName(*it2->second);
+    contents += *it1->second + ' ' + *it2->second + '\n';
+    for (Eigen::Index m = 0; m < matches[i].rows(); ++m) {
+      contents += std::to_string(matches[i](m, 0)) + ' ' +
+                  std::to_string(matches[i](m, 1)) + '\n';
+    }
+    contents += '\n';
+  }
+  WriteFileAtomically(path, contents);
+}
+
 }  // namespace colmap_gcn

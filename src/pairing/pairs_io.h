@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "scene/database.h"
+#include "scene/two_view_geometry_store.h"
 #include "util/types.h"
 
 namespace colmap_gcn {
@@ -29,5 +30,14 @@ void WritePairsFile(const std::string& path,
                     const std::vector<ImagePair>& pairs,
                     const std::vector<DatabaseImage>& images,
                     const std::vector<float>& scores = {});
+
+// Writes COLMAP's raw match list (`matches_importer --match_type raw`),
+// atomically: for each pair its two names, one "index1 index2" line per
+// match (matches[i] parallel to pairs[i], column 0 indexing pairs[i].first),
+// then an empty line.
+void WriteRawMatchesFile(const std::string& path,
+                         const std::vector<ImagePair>& pairs,
+                         const std::vector<FeatureMatches>& matches,
+                         const std::vector<DatabaseImage>& images);
 
 }  // namespace colmap_gcn

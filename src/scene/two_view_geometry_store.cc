@@ -80,6 +80,18 @@ TwoViewGeometryStore::ReadKeypointPositions(const image_t image_id) const {
   return keypoints.leftCols(std::min<Eigen::Index>(2, keypoints.cols()));
 }
 
+FeatureMatches TwoViewGeometryStore::ReadMatches(
+    const image_pair_t pair_id) const {
+  SqliteStatement stmt(
+      Handle(),
+      Path(),
+      "SELECT rows, cols, data FROM matches WHERE pair_id = ?");
+  stmt.BindInt64(1, static_cast<int64_t>(pair_id));
+  if (!stmt.Step()) return FeatureMatches();
+  return ReadMatrixBlob<FeatureMatches>(
+      stmt, 0, "matches", static_cast<int64_t>(pair_id));
+}
+
 std::vector<VerifiedTwoViewGeometry>
 TwoViewGeometryStore::ReadVerifiedTwoViewGeometries(
     const size_t min_num_inliers) const {

@@ -9,6 +9,11 @@
 
 namespace colmap_gcn {
 
+// Feature matches of a pair: column 0 indexes image_id1's keypoints (the
+// smaller id), column 1 image_id2's, as COLMAP stores them.
+typedef Eigen::Matrix<uint32_t, Eigen::Dynamic, 2, Eigen::RowMajor>
+    FeatureMatches;
+
 // A verified pair as the look-alike filter reads it: the inlier matches
 // (column 0 indexes image_id1, the smaller id) and the estimated matrices.
 struct VerifiedTwoViewGeometry {
@@ -16,7 +21,7 @@ struct VerifiedTwoViewGeometry {
   image_t image_id1 = kInvalidImageId;
   image_t image_id2 = kInvalidImageId;
   int config = 0;
-  Eigen::Matrix<uint32_t, Eigen::Dynamic, 2, Eigen::RowMajor> inliers;
+  FeatureMatches inliers;
   Eigen::Matrix3d F = Eigen::Matrix3d::Zero();  // x2' F x1 = 0
   Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();  // x2 ~ H x1
@@ -49,6 +54,9 @@ class TwoViewGeometryStore : public Database {
   // Keypoint positions (x, y; pixel centre at 0.5), one row per keypoint.
   Eigen::Matrix<float, Eigen::Dynamic, 2> ReadKeypointPositions(
       image_t image_id) const;
+
+  // The pair's row of the matches table (no row: no matches).
+  FeatureMatches ReadMatches(image_pair_t pair_id) const;
 
   // Every pair that IsVerifiedTwoViewGeometry accepts, ordered by pair_id.
   std::vector<VerifiedTwoViewGeometry> ReadVerifiedTwoViewGeometries(

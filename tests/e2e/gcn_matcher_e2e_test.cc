@@ -149,12 +149,14 @@ TEST_F(GcnMatcherEndToEnd, ExhaustivePairingEqualsColmapExhaustiveMatcher) {
   EXPECT_EQ(colmap_geometries.size(),
             static_cast<size_t>(kNumImages * (kNumImages - 1) / 2));
   EXPECT_EQ(our_geometries.size(), colmap_geometries.size());
-  // The raw matches are COLMAP's own, up to what COLMAP 3.8's approximate
-  // (FLANN, randomised kd-trees) nearest-neighbour search finds in one run
-  // and not the other: a few matches per pair, and pairs near
-  // min_num_matches (15) stored with none. Per-pair and total counts within
-  // that noise show the pairs and --SiftMatching.* options reached COLMAP
-  // unchanged (a different ratio or distance threshold moves them far more).
+  // Our raw matches are the exact nearest neighbours under COLMAP's ratio,
+  // distance and cross-check rules; COLMAP 3.8's search is approximate
+  // (FLANN, randomised kd-trees) and misses some, differently in each run:
+  // a few matches per pair, and pairs near min_num_matches (15) stored with
+  // none. Per-pair and total counts within that gap show the same rules and
+  // --SiftMatching.* options applied (a different ratio or distance
+  // threshold moves them far more; measured on this scene: ours 2.4 % more
+  // in total).
   {
     const DatabaseInspector colmap_database(colmap_db);
     const DatabaseInspector our_database(ours_db);
@@ -172,7 +174,7 @@ TEST_F(GcnMatcherEndToEnd, ExhaustivePairingEqualsColmapExhaustiveMatcher) {
       }
     }
     EXPECT_GT(colmap_total, 0);
-    EXPECT_NEAR(our_total, colmap_total, 0.02 * colmap_total);
+    EXPECT_NEAR(our_total, colmap_total, 0.05 * colmap_total);
   }
   // Geometric verification is RANSAC: COLMAP's generator state carries from
   // pair to pair, so a different pair order (as two COLMAP runs with other
@@ -426,10 +428,10 @@ TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
   EXPECT_LT(pairs.size(),
             static_cast<size_t>(kNumImages * (kNumImages - 1) / 2));
   EXPECT_EQ(Geometries(database_path).size(), pairs.size());
-  // Round 1 depends on the GCN scores alone, later rounds on COLMAP's
-  // verification, which does not repeat exactly between fresh matchings
-  // (inlier counts vary): a fresh copy must repeat round 1, and given the
-  // same verification results (a matched database) every round.
+  // Round 1 depends on the GCN scores alone, later rounds on the loop's own
+  // matching and verification of the database's features, not on COLMAP's
+  // (which vary between fresh matchings): a fresh copy matched with two
+  // threads must choose the same pairs.
   const size_t num_round1_pairs = NumRound1Pairs(output);
   ASSERT_GT(num_round1_pairs, 0u) << output;
   ASSERT_LT(num_round1_pairs, pairs.size()) << output;
@@ -437,12 +439,20 @@ TEST_F(GcnMatcherEndToEnd, AdaptivePairingPairsEveryImageAndRepeats) {
   const std::string database_path2 = CopyOfBase("adaptive2.db");
   const std::string pairs_path2 =
       JoinPaths(dir_->Path(), "adaptive_pairs2.txt");
-  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path2 + args +
+  std::string args2 = args;
+  args2.replace(args2.find("--GcnMatching.num_threads 1"),
+                std::string("--GcnMatching.num_threads 1").size(),
+                "--GcnMatching.num_threads 2");
+  args2.replace(args2.find("--SiftMatching.num_threads 1"),
+                std::string("--SiftMatching.num_threads 1").size(),
+                "--SiftMatching.num_threads 2");
+  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path2 + args2 +
                        pairs_path2,
                    &output),
             0)
       << output;
   EXPECT_EQ(NumRound1Pairs(output), num_round1_pairs) << output;
+  EXPECT_EQ(ReadPairsFile(pairs_path2), pairs);
 
   // Round 1 alone: the budget stops the generator after it, on a copy of
   // the matched database (nothing left to match).
