@@ -1,7 +1,6 @@
 #include "controllers/pair_export.h"
 
 #include <sstream>
-#include <unordered_map>
 
 #include "controllers/pair_generators.h"
 #include "pairing/pairs_io.h"
@@ -20,25 +19,12 @@ const EnumNames<PairsFormat>& PairsFormatNames() {
 void WriteHlocPairsFile(const std::string& path,
                         const std::vector<ImagePair>& pairs,
                         const std::vector<DatabaseImage>& images) {
-  std::unordered_map<image_t, const std::string*> id_to_name;
-  for (const DatabaseImage& image : images) {
-    id_to_name.emplace(image.image_id, &image.name);
-  }
+  // hloc splits lines on white space, like COLMAP.
+  const PairFileNames names(images);
   std::ostringstream contents;
   for (const ImagePair& pair : pairs) {
-    const auto it1 = id_to_name.find(pair.first);
-    const auto it2 = id_to_name.find(pair.second);
-    if (it1 == id_to_name.end() || it2 == id_to_name.end()) {
-      ThrowError("pair (",
-                 pair.first,
-                 ", ",
-                 pair.second,
-                 ") names an image id not in the database");
-    }
-    // hloc splits lines on white space, like COLMAP.
-    CheckPairsFileImageName(*it1->second);
-    CheckPairsFileImageName(*it2->second);
-    contents << *it1->second << ' ' << *it2->second << '\n';
+    const auto [name1, name2] = names.Of(pair);
+    contents << name1 << ' ' << name2 << '\n';
   }
   WriteFileAtomically(path, contents.str());
 }

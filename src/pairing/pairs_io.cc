@@ -53,30 +53,39 @@ void CheckPairsFileImageName(const std::string& name) {
   }
 }
 
+PairFileNames::PairFileNames(const std::vector<DatabaseImage>& images) {
+  for (const auto& image : images) {
+    id_to_name_.emplace(image.image_id, &image.name);
+  }
+}
+
+std::pair<const std::string&, const std::string&> PairFileNames::Of(
+    const ImagePair& pair) const {
+  const auto it1 = id_to_name_.find(pair.first);
+  const auto it2 = id_to_name_.find(pair.second);
+  if (it1 == id_to_name_.end() || it2 == id_to_name_.end()) {
+    ThrowError("pair (",
+               pair.first,
+               ", ",
+               pair.second,
+               ") names an image id not in the database");
+  }
+  CheckPairsFileImageName(*it1->second);
+  CheckPairsFileImageName(*it2->second);
+  return {*it1->second, *it2->second};
+}
+
 void WritePairsFile(const std::string& path,
                     const std::vector<ImagePair>& pairs,
                     const std::vector<DatabaseImage>& images,
                     const std::vector<float>& scores) {
   THROW_CHECK(scores.empty() || scores.size() == pairs.size());
-  std::unordered_map<image_t, const std::string*> id_to_name;
-  for (const auto& image : images) {
-    id_to_name.emplace(image.image_id, &image.name);
-  }
+  const PairFileNames names(images);
   std::ostringstream contents;
   contents << std::setprecision(6);
   for (size_t i = 0; i < pairs.size(); ++i) {
-    const auto it1 = id_to_name.find(pairs[i].first);
-    const auto it2 = id_to_name.find(pairs[i].second);
-    if (it1 == id_to_name.end() || it2 == id_to_name.end()) {
-      ThrowError("pair (",
-                 pairs[i].first,
-                 ", ",
-                 pairs[i].second,
-                 ") names an image id not in the database");
-    }
-    CheckPairsFileImageName(*it1->second);
-    CheckPairsFileImageName(*it2->second);
-    contents << *it1->second << ' ' << *it2->second;
+    const auto [name1, name2] = names.Of(pairs[i]);
+    contents << name1 << ' ' << name2;
     if (!scores.empty()) {
       contents << ' ' << scores[i];
     }
@@ -90,24 +99,11 @@ void WriteRawMatchesFile(const std::string& path,
                          const std::vector<FeatureMatches>& matches,
                          const std::vector<DatabaseImage>& images) {
   THROW_CHECK(matches.size() == pairs.size());
-  std::unordered_map<image_t, const std::string*> id_to_name;
-  for (const auto& image : images) {
-    id_to_name.emplace(image.image_id, &image.name);
-  }
+  const PairFileNames names(images);
   std::string contents;
   for (size_t i = 0; i < pairs.size(); ++i) {
-    const auto it1 = id_to_name.find(pairs[i].first);
-    const auto it2 = id_to_name.find(pairs[i].second);
-    if (it1 == id_to_name.end() || it2 == id_to_name.end()) {
-      ThrowError("pair (",
-                 pairs[i].first,
-                 ", ",
-                 pairs[i].second,
-                 ") names an image id not in the database");
-    }
-    CheckPairsFileImageName(*it1->second);
-    CheckPairsFileImageName(*it2->second);
-    contents += *it1->second + ' ' + *it2->second + '\n';
+    const auto [name1, name2] = names.Of(pairs[i]);
+    contents += name1 + ' ' + name2 + '\n';
     for (Eigen::Index m = 0; m < matches[i].rows(); ++m) {
       contents += std::to_string(matches[i](m, 0)) + ' ' +
                   std::to_string(matches[i](m, 1)) + '\n';

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -23,6 +24,21 @@ std::vector<ImageNamePair> ReadPairsFile(const std::string& path);
 // Throws Error if COLMAP's parser would split or mangle the name (space, tab,
 // newline, carriage return, or empty).
 void CheckPairsFileImageName(const std::string& name);
+
+// Image names of id pairs as a pairs file spells them (COLMAP's, hloc's,
+// the raw match list): Of() throws Error for an id not in `images` or a
+// name the file cannot hold (CheckPairsFileImageName). Keeps pointers into
+// `images`.
+class PairFileNames {
+ public:
+  explicit PairFileNames(const std::vector<DatabaseImage>& images);
+
+  std::pair<const std::string&, const std::string&> Of(
+      const ImagePair& pair) const;
+
+ private:
+  std::unordered_map<image_t, const std::string*> id_to_name_;
+};
 
 // Writes pairs (by image id) as names, one pair a line, atomically. If scores
 // is non-empty it must be parallel to pairs and becomes the third column.

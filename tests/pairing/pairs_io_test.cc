@@ -65,5 +65,21 @@ TEST(PairsFile, RefusesNamesColmapCannotParse) {
   EXPECT_THROW(WritePairsFile(path, {{1, 3}}, images), Error);
 }
 
+// COLMAP 3.8's matches_importer --match_type raw: the names, one
+// "idx1 idx2" line per match, an empty line after each pair.
+TEST(RawMatchesFile, WritesEachPairsBlockAndRefusesUnknownIds) {
+  TemporaryDirectory dir;
+  const std::string path = JoinPaths(dir.Path(), "matches.txt");
+  const auto images = MakeImages({{4, "x/a.jpg"}, {9, "b.png"}});
+  FeatureMatches matches(2, 2);
+  matches << 0, 7, 12, 3;
+  WriteRawMatchesFile(
+      path, {{4, 9}, {9, 4}}, {matches, FeatureMatches()}, images);
+  EXPECT_EQ(ReadTextFile(path),
+            "x/a.jpg b.png\n0 7\n12 3\n\nb.png x/a.jpg\n\n");
+  EXPECT_THROW(WriteRawMatchesFile(path, {{4, 5}}, {FeatureMatches()}, images),
+               Error);
+}
+
 }  // namespace
 }  // namespace colmap_gcn
