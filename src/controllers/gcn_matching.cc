@@ -96,7 +96,8 @@ void GcnMatchingOptions::Matching::Check() const {
 }
 
 GcnMatchingOptions::GcnMatchingOptions()
-    : pairing(kDefaultPairing), generators(PairGenerators().DefaultOptions()) {}
+    : pairing(PairGenerators().Names().front()),
+      generators(PairGenerators().DefaultOptions()) {}
 
 void GcnMatchingOptions::Check() const {
   const std::vector<std::string> names = PairGenerators().Names();

@@ -16,7 +16,7 @@ struct BenchmarkOptions {
   std::string datasets = "";
 
   // Comma list of methods (see method.h), run in this order on each scene.
-  std::string methods = "exhaustive,knn:25,vocab_tree:25,gcn,adaptive,oracle";
+  std::string methods = "exhaustive,knn:25,vocab_tree:25,gcn,oracle";
 
   // Everything goes here: <output_path>/<scene>/..., report.md,
   // results.csv, results.json, figures/.

@@ -21,9 +21,6 @@ int RunGcnPairExporter(int argc, char** argv) {
                         &export_options.format,
                         PairsFormatNames(),
                         "pairs file layout");
-  // Pairs chosen without matching: the single-shot GCN by default, as
-  // gcn_matcher's default loop decides on verifications.
-  options.pairing = "gcn";
   manager.AddDefaultOption("GcnMatching.pairing",
                            &options.pairing,
                            StringJoin(PairGenerators().Names(), " | "));

@@ -35,15 +35,14 @@ class PairGeneratorRegistryTest : public testing::Test {
   std::string database_path_;
 };
 
-TEST(PairGeneratorRegistry, NamesTheBuiltInGeneratorsGcnFirstAdaptiveDefault) {
+TEST(PairGeneratorRegistry, NamesTheBuiltInGeneratorsGcnFirst) {
   const std::vector<std::string> names = PairGenerators().Names();
   ASSERT_GE(names.size(), 5u);
   EXPECT_EQ(names.front(), "gcn");
-  for (const char* name :
-       {"adaptive", "exhaustive", "imported", "knn", "vocab_tree"}) {
+  for (const char* name : {"exhaustive", "imported", "knn", "vocab_tree"}) {
     EXPECT_TRUE(PairGenerators().Has(name)) << name;
   }
-  EXPECT_EQ(GcnMatchingOptions().pairing, "adaptive");
+  EXPECT_EQ(GcnMatchingOptions().pairing, "gcn");
 }
 
 TEST(PairGeneratorRegistry, UnknownNameIsOneLineListingTheKnownNames) {

@@ -331,7 +331,6 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
   std::string output;
   ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
                        " --GcnMatching.model_path " + model_path +
-                       " --GcnMatching.pairing gcn"
                        " --GcnMatching.k1 6 --GcnMatching.k2 3"
                        " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
                        " --GcnMatching.pairs_path " +
@@ -358,7 +357,6 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
   const std::string pairs_path2 = JoinPaths(dir_->Path(), "gcn_pairs2.txt");
   ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
                        " --GcnMatching.model_path " + model_path +
-                       " --GcnMatching.pairing gcn"
                        " --GcnMatching.k1 6 --GcnMatching.k2 3"
                        " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
                        " --GcnMatching.num_threads 1"
@@ -374,7 +372,6 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
   const std::string pairs_path3 = JoinPaths(dir_->Path(), "gcn_pairs3.txt");
   ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
                        " --GcnMatching.model_path " + model_path +
-                       " --GcnMatching.pairing gcn"
                        " --GcnMatching.k1 6 --GcnMatching.k2 3"
                        " --GcnMatching.u 3 --GcnMatching.threshold 0"
                        " --GcnMatching.pairs_path " +
