@@ -181,7 +181,8 @@ int PartnersStillWanted(int strong_partners,
   return std::max(0, std::min(lacking, left));
 }
 
-size_t CountComponents(const std::vector<std::vector<int>>& neighbours) {
+std::vector<int> ComponentLabels(
+    const std::vector<std::vector<int>>& neighbours) {
   std::vector<int> parent(neighbours.size());
   std::iota(parent.begin(), parent.end(), 0);
   const auto find = [&](int v) {
@@ -191,15 +192,24 @@ size_t CountComponents(const std::vector<std::vector<int>>& neighbours) {
     }
     return v;
   };
-  size_t components = neighbours.size();
   for (size_t v = 0; v < neighbours.size(); ++v) {
     for (const int w : neighbours[v]) {
       const int a = find(static_cast<int>(v));
       const int b = find(w);
-      if (a == b) continue;
-      parent[std::max(a, b)] = std::min(a, b);
-      --components;
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
+  }
+  for (size_t v = 0; v < parent.size(); ++v) {
+    parent[v] = find(static_cast<int>(v));
+  }
+  return parent;
+}
+
+size_t CountComponents(const std::vector<std::vector<int>>& neighbours) {
+  const std::vector<int> labels = ComponentLabels(neighbours);
+  size_t components = 0;
+  for (size_t v = 0; v < labels.size(); ++v) {
+    components += labels[v] == static_cast<int>(v) ? 1 : 0;
   }
   return components;
 }

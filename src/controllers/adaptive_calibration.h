@@ -71,4 +71,8 @@ int PartnersStillWanted(int strong_partners,
 // vertex is a component).
 size_t CountComponents(const std::vector<std::vector<int>>& neighbours);
 
+// Each vertex's component, labelled by the smallest vertex in it.
+std::vector<int> ComponentLabels(
+    const std::vector<std::vector<int>>& neighbours);
+
 }  // namespace colmap_gcn

@@ -38,6 +38,7 @@ void AdaptivePairingOptions::Check() const {
       max_strong_partners,
       max_strong_partners == 0 || max_strong_partners >= min_strong_partners,
       "be 0 (no cap) or >= min_strong_partners");
+  CHECK_OPTION_GE(component_patience, 0);
 }
 
 AdaptivePairGenerator::AdaptivePairGenerator(
@@ -101,6 +102,7 @@ void AdaptivePairGenerator::Reset() {
     candidate.state = Candidate::State::kUntried;
     candidate.verified = false;
     candidate.num_inliers = 0;
+    candidate.bridge = false;
   }
   yielded_.clear();
   rounds_.clear();
@@ -144,6 +146,7 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
   for (const int c : next_) {
     Candidate& candidate = candidates_[c];
     candidate.state = Candidate::State::kPending;
+    candidate.bridge = next_bridging_;
     yielded_.push_back(c);
     block.emplace_back(image_ids_[candidate.row1], image_ids_[candidate.row2]);
     if (connectivity) {
@@ -158,6 +161,7 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
   round.expected_yield = next_yield_;
   round.probe = next_probe_;
   round.connectivity = next_connectivity_;
+  round.bridging = next_bridging_;
   round.num_guarantee = next_guarantee_;
   rounds_.push_back(round);
   round_timer_.Restart();
@@ -290,6 +294,7 @@ void AdaptivePairGenerator::LogRound(const AdaptiveRound& round) const {
   LOG(INFO) << label_ << " round " << round.round
             << (round.probe          ? " (probe)"
                 : round.connectivity ? " (connectivity)"
+                : round.bridging     ? " (bridging)"
                                      : "")
             << ": " << round.num_pairs << " pairs attempted (calibrated yield "
             << yield << "), " << round.num_verified << " verified, "
@@ -443,6 +448,7 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
   next_yield_ = -1;
   next_probe_ = false;
   next_connectivity_ = false;
+  next_bridging_ = false;
   next_guarantee_ = 0;
   const size_t budget = Budget();
   bool any_observed = false;
@@ -467,6 +473,7 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
     return candidates_[a].score > candidates_[b].score;
   });
   const bool enough = options_.stop_rule == AdaptiveStopRule::kEnough;
+  const std::vector<int> uncapped = untried;
   if (enough && options_.max_strong_partners > 0) {
     const size_t cap = static_cast<size_t>(options_.max_strong_partners);
     std::vector<int> wanted;
@@ -521,6 +528,10 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
         GuaranteeBlock(untried, taken, budget - block.size());
     next_guarantee_ = guarantee.size();
     block.insert(block.end(), guarantee.begin(), guarantee.end());
+    if (block.empty()) {
+      block = BridgeBlock(uncapped, budget);
+      next_bridging_ = !block.empty();
+    }
   } else if (block.empty()) {
     block = ConnectivityBlock(untried, budget);
     next_connectivity_ = !block.empty();
@@ -538,6 +549,12 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
                     " strong partners or has tried " +
                     std::to_string(options_.image_patience) +
                     " candidates without one";
+    if (options_.component_patience > 0) {
+      enough_reason += ", and every strong component has spent its " +
+                       std::to_string(options_.component_patience) +
+                       " attempts at joining another or has no candidate "
+                       "leading out of it";
+    }
   }
   if (enough && options_.max_strong_partners > 0) {
     enough_reason += " (pairs of two images with " +
@@ -552,67 +569,4 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
   return block;
 }
 
-std::vector<int> AdaptivePairGenerator::GuaranteeBlock(
-    const std::vector<int>& untried,
-    const std::vector<uint8_t>& taken,
-    size_t budget) const {
-  // Partners still wanted per image: up to min_strong_partners strong ones,
-  // within its patience; the taken pairs already count for both images.
-  std::vector<int> wanted(image_ids_.size(), 0);
-  for (size_t row = 0; row < image_ids_.size(); ++row) {
-    wanted[row] =
-        PartnersStillWanted(static_cast<int>(strong_neighbours_[row].size()),
-                            failures_[row],
-                            options_.min_strong_partners,
-                            options_.image_patience);
-  }
-  for (size_t c = 0; c < taken.size(); ++c) {
-    if (!taken[c]) continue;
-    for (const int row : {candidates_[c].row1, candidates_[c].row2}) {
-      wanted[row] = std::max(0, wanted[row] - 1);
-    }
-  }
-  std::vector<int> block;
-  for (const int c : untried) {  // most probable first
-    if (block.size() >= budget) break;
-    if (taken[c]) continue;
-    const int row1 = candidates_[c].row1;
-    const int row2 = candidates_[c].row2;
-    if (wanted[row1] == 0 && wanted[row2] == 0) continue;
-    block.push_back(c);
-    wanted[row1] = std::max(0, wanted[row1] - 1);
-    wanted[row2] = std::max(0, wanted[row2] - 1);
-  }
-  return block;
-}
-
-std::vector<int> AdaptivePairGenerator::ConnectivityBlock(
-    const std::vector<int>& untried, size_t budget) const {
-  // Images never attempted, then images without a strong pair, each its
-  // most probable untried candidate.
-  std::vector<uint8_t> attempted(image_ids_.size(), 0);
-  for (const int c : yielded_) {
-    attempted[candidates_[c].row1] = 1;
-    attempted[candidates_[c].row2] = 1;
-  }
-  std::vector<int> best(image_ids_.size(), -1);
-  for (const int c : untried) {
-    for (const int row : {candidates_[c].row1, candidates_[c].row2}) {
-      if (best[row] < 0) best[row] = c;
-    }
-  }
-  std::vector<uint8_t> chosen(candidates_.size(), 0);
-  for (size_t row = 0; row < image_ids_.size(); ++row) {
-    const bool wanted =
-        !attempted[row] || (strong_neighbours_[row].empty() &&
-                            retries_[row] < options_.isolated_retries);
-    if (!wanted || best[row] < 0 || chosen[best[row]]) continue;
-    chosen[best[row]] = 1;
-  }
-  std::vector<int> block;
-  for (const int c : untried) {
-    if (chosen[c] && block.size() < budget) block.push_back(c);
-  }
-  return block;
-}
 }  // namespace colmap_gcn

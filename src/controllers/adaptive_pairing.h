@@ -37,7 +37,9 @@ namespace colmap_gcn {
 //   still connect the collection (more images reach min_strong_partners or
 //   strong components merge); a pair whose two images already have
 //   max_strong_partners strong partners is not asked for, which is what
-//   ends the rounds on a dense capture where almost every pair verifies.
+//   ends the rounds on a dense capture where almost every pair verifies;
+//   before it finishes, every strong component keeps trying to reach
+//   another one for component_patience attempts.
 // - kRecall (adaptive_recall, graphmatch): the rule before kEnough: probe
 //   rounds while the last round's strong fraction reached min_pair_yield,
 //   then the connectivity attempts of isolated_retries.
@@ -113,6 +115,14 @@ struct AdaptivePairingOptions {
   // stops short of exhaustive's budget. 0: no cap.
   int max_strong_partners = 20;
 
+  // kEnough: once nothing else is asked for, every strong component of at
+  // least two images tries its most probable candidates that lead out of
+  // it, until a strong pair joins it to another component or it has spent
+  // this many such attempts that did not verify strongly. A block of
+  // photos whose images have all spent their image_patience inside it is
+  // otherwise a model of its own. 0: none.
+  int component_patience = 5;
+
   // Throws OptionError naming the first invalid field.
   void Check() const;
 };
@@ -131,6 +141,7 @@ struct AdaptiveRound {
   double expected_yield = -1;  // mean calibrated P(strong); -1: round 1
   bool probe = false;          // taken below min_pair_yield to probe
   bool connectivity = false;   // the connectivity attempts
+  bool bridging = false;       // kEnough: attempts between strong components
   size_t num_guarantee = 0;    // kEnough: pairs for images below
                                // min_strong_partners
   size_t num_connected = 0;    // kEnough, after it: images with
@@ -197,6 +208,7 @@ class AdaptivePairGenerator : public PairGenerator {
     } state = State::kUntried;
     bool verified = false;
     size_t num_inliers = 0;
+    bool bridge = false;  // yielded by a bridging round
   };
 
   void PrepareNext() const;  // fills next_ (logical constness: a cache)
@@ -211,6 +223,11 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<int> GuaranteeBlock(const std::vector<int>& untried,
                                   const std::vector<uint8_t>& taken,
                                   size_t budget) const;
+  // kEnough: each strong component's most probable candidates leading out
+  // of it, within component_patience (the candidates uncapped by
+  // max_strong_partners).
+  std::vector<int> BridgeBlock(const std::vector<int>& untried,
+                               size_t budget) const;
   // kRecall: the connectivity attempts.
   std::vector<int> ConnectivityBlock(const std::vector<int>& untried,
                                      size_t budget) const;
@@ -253,6 +270,7 @@ class AdaptivePairGenerator : public PairGenerator {
   mutable double next_yield_ = -1;
   mutable bool next_probe_ = false;
   mutable bool next_connectivity_ = false;
+  mutable bool next_bridging_ = false;
   mutable size_t next_guarantee_ = 0;
 };
 

@@ -164,6 +164,11 @@ void AddAdaptiveOptions(OptionManager* manager,
       &options->max_strong_partners,
       "adaptive: strong partners after which an image has enough for the "
       "mapper; 0: no cap");
+  manager->AddDefaultOption(
+      "GcnMatching.component_patience",
+      &options->component_patience,
+      "adaptive: attempts each strong component of >= 2 images spends on "
+      "joining another before the rounds stop; 0: none");
 }
 
 }  // namespace

@@ -140,5 +140,12 @@ TEST(CountComponents, IsolatedVerticesAndChains) {
   EXPECT_EQ(CountComponents({{1, 2}, {0, 2}, {0, 1}}), 1u);
 }
 
+TEST(ComponentLabels, TheSmallestVertexOfEachComponent) {
+  // 0-3-5 and 1-4 (joined from their larger ends first), 2 alone.
+  const std::vector<std::vector<int>> graph = {{3}, {4}, {}, {5, 0}, {1}, {3}};
+  EXPECT_EQ(ComponentLabels(graph), (std::vector<int>{0, 1, 2, 0, 1, 0}));
+  EXPECT_TRUE(ComponentLabels({}).empty());
+}
+
 }  // namespace
 }  // namespace colmap_gcn

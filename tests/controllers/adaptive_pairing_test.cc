@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_test_scenes.h"
 #include "scene/database.h"
 #include "test_utils.h"
 #include "util/logging.h"
@@ -17,74 +18,10 @@
 namespace colmap_gcn {
 namespace {
 
-// A ring of images: neighbours up to ring distance 3 overlap (strong
-// verifications, hundreds of inliers), farther candidates verify by
-// accident (20 inliers) or not at all. Scores fall with ring distance,
-// with a deterministic wobble that reorders pairs of one distance only.
-struct RingScene {
-  explicit RingScene(int num_images, int num_neighbours = 6) {
-    for (int i = 0; i < num_images; ++i) image_ids.push_back(i + 1);
-    for (int i = 0; i < num_images; ++i) {
-      for (int d = 1; d <= num_neighbours; ++d) {
-        const int j = (i + d) % num_images;
-        const float wobble = 0.02f * static_cast<float>((i * 7 + d * 3) % 5);
-        candidates.push_back({image_ids[i],
-                              image_ids[j],
-                              1.0f / static_cast<float>(d) - wobble});
-      }
-    }
-  }
-
-  int Distance(image_t a, image_t b) const {
-    const int n = static_cast<int>(image_ids.size());
-    const int d = std::abs(static_cast<int>(a) - static_cast<int>(b));
-    return std::min(d, n - d);
-  }
-  bool IsStrongPair(image_t a, image_t b) const { return Distance(a, b) <= 3; }
-
-  PairVerification Verify(const ImagePair& pair) const {
-    PairVerification verification;
-    verification.image_id1 = pair.first;
-    verification.image_id2 = pair.second;
-    const int d = Distance(pair.first, pair.second);
-    if (d <= 3) {
-      verification.config = 2;
-      verification.num_inliers = 900 / d;
-    } else if ((pair.first + pair.second) % 2 == 0) {
-      verification.config = 2;
-      verification.num_inliers = 18 + d;
-    }
-    return verification;
-  }
-
-  std::vector<image_t> image_ids;
-  std::vector<PairCandidate> candidates;
-};
-
-// Runs the generator to the end; returns its blocks.
-std::vector<std::vector<ImagePair>> RunToTheEnd(
-    AdaptivePairGenerator* generator,
-    const std::function<PairVerification(const ImagePair&)>& verify) {
-  std::vector<std::vector<ImagePair>> blocks;
-  generator->Reset();
-  while (!generator->HasFinished()) {
-    blocks.push_back(generator->Next());
-    std::vector<PairVerification> results;
-    for (const ImagePair& pair : blocks.back()) results.push_back(verify(pair));
-    generator->Observe(results);
-    if (blocks.size() > 1000) break;  // a loop that never ends fails below
-  }
-  return blocks;
-}
-
-std::vector<ImagePair> Flatten(
-    const std::vector<std::vector<ImagePair>>& blocks) {
-  std::vector<ImagePair> pairs;
-  for (const auto& block : blocks) {
-    pairs.insert(pairs.end(), block.begin(), block.end());
-  }
-  return pairs;
-}
+using test::Flatten;
+using test::LineScene;
+using test::RingScene;
+using test::RunToTheEnd;
 
 TEST(AdaptivePairGenerator, SimulatedRunFindsTheStrongPairsAndStops) {
   const RingScene scene(40);
@@ -179,19 +116,26 @@ TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
   };
   AdaptivePairingOptions options;
   options.isolated_retries = 0;
-  // The enough rule: every pair within the groups, no cross pair after
-  // round 1 (no probe: the groups are connected, nothing left to connect).
+  // The enough rule: every pair within the groups; after round 1 the only
+  // cross pairs are the bridging attempts (1-13 closes no strong triangle,
+  // so the groups try to join), one per round, none strong.
   AdaptivePairGenerator enough(options, image_ids, candidates);
   const auto enough_blocks = RunToTheEnd(&enough, verify);
   size_t enough_within = 0;
+  size_t enough_across = 0;
   for (size_t b = 0; b < enough_blocks.size(); ++b) {
     for (const ImagePair& pair : enough_blocks[b]) {
       const bool same = group(pair.first) == group(pair.second);
       enough_within += same ? 1 : 0;
-      EXPECT_TRUE(same || b == 0) << pair.first << "-" << pair.second;
+      if (b == 0 || same) continue;
+      ++enough_across;
+      EXPECT_TRUE(enough.Rounds()[b].bridging)
+          << pair.first << "-" << pair.second;
+      EXPECT_EQ(enough.Rounds()[b].num_strong, 0u);
     }
   }
   EXPECT_EQ(enough_within, 2u * 66u);
+  EXPECT_EQ(enough_across, static_cast<size_t>(options.component_patience));
   // The recall rule ends with one probe round.
   options.stop_rule = AdaptiveStopRule::kRecall;
   AdaptivePairGenerator generator(options, image_ids, candidates);
@@ -227,79 +171,6 @@ TEST(AdaptivePairGenerator, PropagationDoesNotSpreadAWrongStrongPair) {
   EXPECT_LE(across_after_first_round, 12u);
   EXPECT_LT(through_wrong_pair, 6u);
 }
-
-TEST(AdaptivePairGenerator, EveryImageGetsAPairAndIsolatedOnesRetries) {
-  RingScene scene(20);
-  // Image 21 has candidates but none of them verifies, all low-scored.
-  scene.image_ids.push_back(21);
-  for (image_t other = 1; other <= 6; ++other) {
-    scene.candidates.push_back({21, other, 0.01f * static_cast<float>(other)});
-  }
-  AdaptivePairingOptions options;
-  options.stop_rule = AdaptiveStopRule::kRecall;
-  options.initial_per_image = 1;
-  options.exploration_fraction = 0;
-  options.isolated_retries = 2;
-  AdaptivePairGenerator generator(options, scene.image_ids, scene.candidates);
-  const auto pairs =
-      Flatten(RunToTheEnd(&generator, [&](const ImagePair& pair) {
-        if (pair.first != 21 && pair.second != 21) return scene.Verify(pair);
-        PairVerification failed;
-        failed.image_id1 = pair.first;
-        failed.image_id2 = pair.second;
-        return failed;
-      }));
-  std::map<image_t, int> attempts;
-  for (const ImagePair& pair : pairs) {
-    ++attempts[pair.first];
-    ++attempts[pair.second];
-  }
-  for (const image_t id : scene.image_ids) EXPECT_GE(attempts[id], 1) << id;
-  // Its best candidate in round 1, then two retries.
-  EXPECT_EQ(attempts[21], 3);
-
-  // A budget is hard, and round 1 cut by it keeps each image's best first.
-  options.max_num_pairs = 21;
-  AdaptivePairGenerator budget(options, scene.image_ids, scene.candidates);
-  const auto budget_pairs = Flatten(RunToTheEnd(
-      &budget, [&](const ImagePair& pair) { return scene.Verify(pair); }));
-  EXPECT_EQ(budget_pairs.size(), 21u);
-  std::set<image_t> covered;
-  for (const ImagePair& pair : budget_pairs) {
-    covered.insert(pair.first);
-    covered.insert(pair.second);
-  }
-  EXPECT_EQ(covered.size(), scene.image_ids.size());
-}
-
-// A dense capture: images on a line, every pair verifies with more than
-// the strong floor, inliers falling with distance (1000 / d^2, at least 31).
-struct LineScene {
-  explicit LineScene(int num_images) {
-    for (int i = 0; i < num_images; ++i) image_ids.push_back(i + 1);
-    for (int i = 0; i < num_images; ++i) {
-      for (int j = i + 1; j < num_images; ++j) {
-        const float d = static_cast<float>(j - i);
-        candidates.push_back({image_ids[i], image_ids[j], 1.0f / d});
-      }
-    }
-  }
-  static int Distance(const ImagePair& pair) {
-    return std::abs(static_cast<int>(pair.first) -
-                    static_cast<int>(pair.second));
-  }
-  static PairVerification Verify(const ImagePair& pair) {
-    const int d = Distance(pair);
-    PairVerification verification;
-    verification.image_id1 = pair.first;
-    verification.image_id2 = pair.second;
-    verification.config = 2;
-    verification.num_inliers = std::max(31, 1000 / (d * d));
-    return verification;
-  }
-  std::vector<image_t> image_ids;
-  std::vector<PairCandidate> candidates;
-};
 
 TEST(AdaptivePairGenerator, EnoughStopsOnADenseCaptureWhereRecallDoesNot) {
   const LineScene scene(30);  // 435 pairs, all verifying
@@ -362,55 +233,6 @@ TEST(AdaptivePairGenerator, ImagesWithEnoughStrongPartnersStopAskingForMore) {
                 1u);
     }
   }
-}
-
-TEST(AdaptivePairGenerator, WeakImagesKeepTryingWithinTheirPatience) {
-  RingScene scene(20);
-  // Image 21: eight low-scored candidates; only the last (lowest) one
-  // verifies, strongly. Image 22: six candidates, none verifies.
-  scene.image_ids.push_back(21);
-  scene.image_ids.push_back(22);
-  for (image_t other = 1; other <= 8; ++other) {
-    scene.candidates.push_back({21, other, 0.09f - 0.01f * other});
-  }
-  for (image_t other = 1; other <= 6; ++other) {
-    scene.candidates.push_back({22, other, 0.09f - 0.01f * other});
-  }
-  const auto verify = [&](const ImagePair& pair) {
-    PairVerification result;
-    result.image_id1 = pair.first;
-    result.image_id2 = pair.second;
-    const image_t weak = std::max(pair.first, pair.second);
-    const image_t other = std::min(pair.first, pair.second);
-    if (weak <= 20) return scene.Verify(pair);
-    if (weak == 21 && other == 8) {
-      result.config = 2;
-      result.num_inliers = 400;
-    }
-    return result;
-  };
-  AdaptivePairingOptions options;
-  options.exploration_fraction = 0;
-  options.image_patience = 8;
-  AdaptivePairGenerator patient(options, scene.image_ids, scene.candidates);
-  std::map<image_t, int> attempts;
-  bool found = false;
-  for (const ImagePair& pair : Flatten(RunToTheEnd(&patient, verify))) {
-    for (const image_t id : {pair.first, pair.second}) ++attempts[id];
-    found |= std::max(pair.first, pair.second) == 21 &&
-             std::min(pair.first, pair.second) == 8;
-  }
-  EXPECT_TRUE(found);          // its partner at rank 8
-  EXPECT_EQ(attempts[21], 8);  // all its candidates, no more exist
-  EXPECT_EQ(attempts[22], 6);  // all its candidates, patience 8 not reached
-  options.image_patience = 4;
-  AdaptivePairGenerator impatient(options, scene.image_ids, scene.candidates);
-  attempts.clear();
-  for (const ImagePair& pair : Flatten(RunToTheEnd(&impatient, verify))) {
-    for (const image_t id : {pair.first, pair.second}) ++attempts[id];
-  }
-  EXPECT_EQ(attempts[21], 4);
-  EXPECT_EQ(attempts[22], 4);
 }
 
 TEST(AdaptivePairGenerator, RejectedPairsAreNeitherStrongNorPartners) {
@@ -572,6 +394,8 @@ TEST(AdaptivePairingOptions, CheckNamesTheField) {
          "image_patience");
   expect([](AdaptivePairingOptions* o) { o->max_strong_partners = 2; },
          "max_strong_partners");
+  expect([](AdaptivePairingOptions* o) { o->component_patience = -1; },
+         "component_patience");
   EXPECT_NO_THROW(AdaptivePairingOptions().Check());
 }
 

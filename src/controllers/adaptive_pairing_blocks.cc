@@ -1,0 +1,148 @@
+// The blocks AdaptivePairGenerator adds beyond its ranked and probe rounds:
+// the per-image guarantee and the bridging between strong components
+// (kEnough), the connectivity attempts (kRecall).
+#include <algorithm>
+
+#include "controllers/adaptive_pairing.h"
+
+namespace colmap_gcn {
+
+std::vector<int> AdaptivePairGenerator::GuaranteeBlock(
+    const std::vector<int>& untried,
+    const std::vector<uint8_t>& taken,
+    size_t budget) const {
+  // Partners still wanted per image: up to min_strong_partners strong ones,
+  // within its patience; the taken pairs already count for both images.
+  std::vector<int> wanted(image_ids_.size(), 0);
+  for (size_t row = 0; row < image_ids_.size(); ++row) {
+    wanted[row] =
+        PartnersStillWanted(static_cast<int>(strong_neighbours_[row].size()),
+                            failures_[row],
+                            options_.min_strong_partners,
+                            options_.image_patience);
+  }
+  for (size_t c = 0; c < taken.size(); ++c) {
+    if (!taken[c]) continue;
+    for (const int row : {candidates_[c].row1, candidates_[c].row2}) {
+      wanted[row] = std::max(0, wanted[row] - 1);
+    }
+  }
+  std::vector<int> block;
+  for (const int c : untried) {  // most probable first
+    if (block.size() >= budget) break;
+    if (taken[c]) continue;
+    const int row1 = candidates_[c].row1;
+    const int row2 = candidates_[c].row2;
+    if (wanted[row1] == 0 && wanted[row2] == 0) continue;
+    block.push_back(c);
+    wanted[row1] = std::max(0, wanted[row1] - 1);
+    wanted[row2] = std::max(0, wanted[row2] - 1);
+  }
+  return block;
+}
+
+std::vector<int> AdaptivePairGenerator::ConnectivityBlock(
+    const std::vector<int>& untried, size_t budget) const {
+  // Images never attempted, then images without a strong pair, each its
+  // most probable untried candidate.
+  std::vector<uint8_t> attempted(image_ids_.size(), 0);
+  for (const int c : yielded_) {
+    attempted[candidates_[c].row1] = 1;
+    attempted[candidates_[c].row2] = 1;
+  }
+  std::vector<int> best(image_ids_.size(), -1);
+  for (const int c : untried) {
+    for (const int row : {candidates_[c].row1, candidates_[c].row2}) {
+      if (best[row] < 0) best[row] = c;
+    }
+  }
+  std::vector<uint8_t> chosen(candidates_.size(), 0);
+  for (size_t row = 0; row < image_ids_.size(); ++row) {
+    const bool wanted =
+        !attempted[row] || (strong_neighbours_[row].empty() &&
+                            retries_[row] < options_.isolated_retries);
+    if (!wanted || best[row] < 0 || chosen[best[row]]) continue;
+    chosen[best[row]] = 1;
+  }
+  std::vector<int> block;
+  for (const int c : untried) {
+    if (chosen[c] && block.size() < budget) block.push_back(c);
+  }
+  return block;
+}
+std::vector<int> AdaptivePairGenerator::BridgeBlock(
+    const std::vector<int>& untried, size_t budget) const {
+  if (options_.component_patience <= 0) return {};
+  // Components over the strong pairs that close a strong triangle: the
+  // mapper grows a model across a pair whose two images see a third
+  // image's points, while a lone strong pair between two blocks often
+  // leaves them two models. A lone bridge, once strong, raises the support
+  // of the candidates beside it, which the next attempts then take.
+  std::vector<std::vector<int>> sturdy(image_ids_.size());
+  for (size_t row = 0; row < image_ids_.size(); ++row) {
+    const std::vector<int>& a = strong_neighbours_[row];
+    for (const int other : a) {
+      if (other <= static_cast<int>(row)) continue;
+      const std::vector<int>& b = strong_neighbours_[other];
+      size_t i = 0;
+      size_t j = 0;
+      bool closes = false;
+      while (!closes && i < a.size() && j < b.size()) {
+        if (a[i] == b[j]) {
+          closes = true;
+        } else if (a[i] < b[j]) {
+          ++i;
+        } else {
+          ++j;
+        }
+      }
+      if (!closes) continue;
+      sturdy[row].push_back(other);
+      sturdy[other].push_back(static_cast<int>(row));
+    }
+  }
+  const std::vector<int> component = ComponentLabels(sturdy);
+  std::vector<int> size(image_ids_.size(), 0);
+  for (const int label : component) ++size[label];
+  // A component's spent patience: its earlier bridging attempts that still
+  // lead out of it, strong or not (a lone strong one joins nothing yet).
+  std::vector<int> spent(image_ids_.size(), 0);
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (!candidate.bridge || candidate.state != Candidate::State::kObserved) {
+      continue;
+    }
+    const int a = component[candidate.row1];
+    const int b = component[candidate.row2];
+    if (a == b) continue;
+    ++spent[a];
+    ++spent[b];
+  }
+  // Images outside every triangle have their own guarantee
+  // (image_patience); bridges join components of two or more images, so a
+  // component's patience is not spent on images that match nothing.
+  // One attempt per component and round, so that a bridge found raises the
+  // candidates beside it before the next attempt is chosen.
+  std::vector<int> wanted(image_ids_.size(), 0);
+  for (size_t label = 0; label < image_ids_.size(); ++label) {
+    if (size[label] >= 2 && spent[label] < options_.component_patience) {
+      wanted[label] = 1;
+    }
+  }
+  std::vector<int> block;
+  for (const int c : untried) {  // most probable first
+    if (block.size() >= budget) break;
+    const int a = component[candidates_[c].row1];
+    const int b = component[candidates_[c].row2];
+    if (a == b || size[a] < 2 || size[b] < 2 ||
+        (wanted[a] == 0 && wanted[b] == 0)) {
+      continue;
+    }
+    block.push_back(c);
+    wanted[a] = 0;
+    wanted[b] = 0;
+  }
+  return block;
+}
+
+}  // namespace colmap_gcn
