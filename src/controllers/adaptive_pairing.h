@@ -115,12 +115,13 @@ struct AdaptivePairingOptions {
   // stops short of exhaustive's budget. 0: no cap.
   int max_strong_partners = 20;
 
-  // kEnough: once nothing else is asked for, every strong component of at
-  // least two images tries its most probable candidates that lead out of
-  // it, until a strong pair joins it to another component or it has spent
-  // this many such attempts that did not verify strongly. A block of
-  // photos whose images have all spent their image_patience inside it is
-  // otherwise a model of its own. 0: none.
+  // kEnough: once nothing else is asked for, every component of images
+  // joined by strong pairs that close a strong triangle (two or more
+  // images) tries, one a round, its most probable candidates that lead to
+  // another such component, until it is joined or it has spent this many
+  // attempts still leading out of it. A block of photos whose images have
+  // all found their partners inside it is otherwise a model of its own.
+  // 0: none.
   int component_patience = 5;
 
   // Throws OptionError naming the first invalid field.
@@ -223,9 +224,9 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<int> GuaranteeBlock(const std::vector<int>& untried,
                                   const std::vector<uint8_t>& taken,
                                   size_t budget) const;
-  // kEnough: each strong component's most probable candidates leading out
-  // of it, within component_patience (the candidates uncapped by
-  // max_strong_partners).
+  // kEnough: one candidate per component over strong triangles, its most
+  // probable one leading to another, within component_patience (from the
+  // candidates uncapped by max_strong_partners).
   std::vector<int> BridgeBlock(const std::vector<int>& untried,
                                size_t budget) const;
   // kRecall: the connectivity attempts.

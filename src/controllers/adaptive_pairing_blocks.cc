@@ -70,6 +70,7 @@ std::vector<int> AdaptivePairGenerator::ConnectivityBlock(
   }
   return block;
 }
+
 std::vector<int> AdaptivePairGenerator::BridgeBlock(
     const std::vector<int>& untried, size_t budget) const {
   if (options_.component_patience <= 0) return {};
@@ -79,27 +80,11 @@ std::vector<int> AdaptivePairGenerator::BridgeBlock(
   // leaves them two models. A lone bridge, once strong, raises the support
   // of the candidates beside it, which the next attempts then take.
   std::vector<std::vector<int>> sturdy(image_ids_.size());
-  for (size_t row = 0; row < image_ids_.size(); ++row) {
-    const std::vector<int>& a = strong_neighbours_[row];
-    for (const int other : a) {
-      if (other <= static_cast<int>(row)) continue;
-      const std::vector<int>& b = strong_neighbours_[other];
-      size_t i = 0;
-      size_t j = 0;
-      bool closes = false;
-      while (!closes && i < a.size() && j < b.size()) {
-        if (a[i] == b[j]) {
-          closes = true;
-        } else if (a[i] < b[j]) {
-          ++i;
-        } else {
-          ++j;
-        }
-      }
-      if (!closes) continue;
-      sturdy[row].push_back(other);
-      sturdy[other].push_back(static_cast<int>(row));
-    }
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (!IsStrong(candidate) || CommonStrongNeighbours(c) == 0) continue;
+    sturdy[candidate.row1].push_back(candidate.row2);
+    sturdy[candidate.row2].push_back(candidate.row1);
   }
   const std::vector<int> component = ComponentLabels(sturdy);
   std::vector<int> size(image_ids_.size(), 0);
