@@ -5,6 +5,8 @@
 #include <numeric>
 #include <queue>
 
+#include <Eigen/Geometry>
+
 #include "disambiguation/relative_pose.h"
 #include "util/option_check.h"
 
@@ -88,7 +90,8 @@ struct RotationForest {
   explicit RotationForest(int num_images)
       : tree(num_images),
         component(num_images, -1),
-        absolute(num_images, Eigen::Matrix3d::Identity()) {}
+        absolute(num_images, Eigen::Matrix3d::Identity()),
+        turned(num_images, Eigen::Vector3d::Zero()) {}
 
   void AddEdge(const std::vector<ViewGraphEdge>& edges, int e) {
     tree[edges[e].image1].emplace_back(edges[e].image2, e);
@@ -102,6 +105,7 @@ struct RotationForest {
       if (component[root] >= 0) continue;
       component[root] = root;
       absolute[root] = Eigen::Matrix3d::Identity();
+      turned[root].setZero();
       std::queue<int> queue;
       queue.push(root);
       while (!queue.empty()) {
@@ -110,11 +114,13 @@ struct RotationForest {
         for (const auto& [next, e] : tree[image]) {
           if (component[next] >= 0) continue;
           component[next] = root;
-          const Eigen::Matrix3d& R = edges[e].rotation;
-          absolute[next] =
-              edges[e].image1 == image
-                  ? Eigen::Matrix3d(R * absolute[image])
-                  : Eigen::Matrix3d(R.transpose() * absolute[image]);
+          const Eigen::Matrix3d step = edges[e].image1 == image
+                                           ? edges[e].rotation
+                                           : edges[e].rotation.transpose();
+          const Eigen::AngleAxisd turn(step);
+          turned[next] = turned[image] + absolute[image].transpose() *
+                                             turn.axis() * turn.angle();
+          absolute[next] = step * absolute[image];
           queue.push(next);
         }
       }
@@ -141,6 +147,14 @@ struct RotationForest {
     return error;
   }
 
+  // Degrees the rotations along the tree path between two images turn in
+  // all, as one unwrapped turn: steps back and forth cancel, a full circle
+  // counts 360; -1 across trees.
+  double PathRotation(int image1, int image2) const {
+    if (component[image1] != component[image2]) return -1;
+    return (turned[image2] - turned[image1]).norm() * 180.0 / M_PI;
+  }
+
   // Degrees between the edge's mean inlier rays, image 1's turned into
   // image 2's frame by the chained rotation; -1 without rays or across
   // trees.
@@ -160,6 +174,10 @@ struct RotationForest {
   std::vector<std::vector<std::pair<int, int>>> tree;
   std::vector<int> component;
   std::vector<Eigen::Matrix3d> absolute;
+  // The turn from the tree's root to each image: the sum of the rotation
+  // vectors (axis times angle, radians, in the root's frame) of the tree
+  // edges on the way, so that a path's turn is a difference.
+  std::vector<Eigen::Vector3d> turned;
 };
 
 }  // namespace
@@ -228,6 +246,7 @@ std::vector<LookalikeDecision> DecideLookalikePairs(
     LookalikeDecision& decision = decisions[e];
     decision.rotation_error = forest.Error(edge);
     decision.view_parallax = forest.Parallax(edge);
+    decision.path_rotation = forest.PathRotation(edge.image1, edge.image2);
     if (options.max_backbone_hops > 0) {
       decision.backbone_hops = Hops(
           adjacency, edge.image1, edge.image2, static_cast<int>(e), &distance);

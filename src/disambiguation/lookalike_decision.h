@@ -95,6 +95,9 @@ struct LookalikeDecision {
   // (the angle at which the two cameras would see the matched surface); -1
   // without view rays or across trees.
   double view_parallax = -1;
+  // Degrees the tree path between its images turns, unwrapped (steps back
+  // and forth cancel); -1 across trees.
+  double path_rotation = -1;
   // Backbone hops between the images without this edge; -1 if unconnected.
   int backbone_hops = -1;
 

@@ -212,7 +212,7 @@ std::string CsvLine(const PairFilterEntry& entry) {
                             ? entry.rotations.homography[i]
                             : Eigen::Matrix3d::Identity());
   }
-  line << '\n';
+  line << ',' << entry.decision.path_rotation << '\n';
   return line.str();
 }
 
@@ -222,7 +222,7 @@ void WritePairsCsv(const PairFilterReport& report, const std::string& path) {
       "name1,name2,num_inliers,covered_cells,distinctive_inliers,rotation_"
       "error,view_parallax,backbone_hops,in_backbone,"
       "in_tree,decision,config,ew,ex,ey,ez,num_h,h1w,h1x,h1y,h1z,h2w,h2x,h2y,"
-      "h2z\n";
+      "h2z,path_rotation\n";
   for (const PairFilterEntry& entry : report.entries) csv += CsvLine(entry);
   WriteFileAtomically(path, csv);
 }

@@ -105,6 +105,31 @@ TEST(LookalikeDecision, KeepsEveryPairOfAnOrdinaryRing) {
   }
 }
 
+// path_rotation is the unwrapped turn of the tree path between a pair's
+// images: on a ring it is the pair's angle the short or the long way round
+// (the tree leaves one gap, and the pairs across it go the long way).
+TEST(LookalikeDecision, PathRotationIsTheTurnAlongTheTree) {
+  const int n = 36;
+  const RingGraph ring = MakeRing(n, 3, /*twins=*/false, 5);
+  const std::vector<LookalikeDecision> decisions =
+      DecideLookalikePairs(n, ring.edges, LookalikeDecisionOptions());
+  int long_way = 0;
+  for (size_t e = 0; e < decisions.size(); ++e) {
+    const double angle =
+        (ring.edges[e].image2 - ring.edges[e].image1) * 360.0 / n;
+    const double turn = decisions[e].path_rotation;
+    EXPECT_LT(std::min(std::abs(turn - angle), std::abs(turn - (360 - angle))),
+              10.0)
+        << ring.edges[e].image1 << "-" << ring.edges[e].image2 << " turn "
+        << turn;
+    if (decisions[e].in_tree) {
+      EXPECT_NEAR(turn, std::min(angle, 360 - angle), 5.0);
+    }
+    if (turn > 180) ++long_way;
+  }
+  EXPECT_GE(long_way, 3);
+}
+
 TEST(LookalikeDecision, DoesNotDependOnTheOrderOfTheEdges) {
   const RingGraph graph = MakeRing(24, 3, /*twins=*/true, 3);
   const std::vector<LookalikeDecision> decisions =
@@ -123,6 +148,7 @@ TEST(LookalikeDecision, DoesNotDependOnTheOrderOfTheEdges) {
     EXPECT_EQ(a.in_tree, b.in_tree);
     EXPECT_EQ(a.backbone_hops, b.backbone_hops);
     EXPECT_DOUBLE_EQ(a.rotation_error, b.rotation_error);
+    EXPECT_DOUBLE_EQ(a.path_rotation, b.path_rotation);
   }
 }
 
