@@ -1,6 +1,7 @@
 #include "disambiguation/pair_filter.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -23,110 +24,121 @@
 namespace colmap_gcn {
 namespace {
 
-// Rays (normalised coordinates) of at most max_rays of a pair's inliers,
-// evenly spaced over them.
-void InlierRays(const VerifiedTwoViewGeometry& pair,
-                const KeypointPositions& keypoints1,
-                const KeypointPositions& keypoints2,
-                const PinholeIntrinsics& camera1,
-                const PinholeIntrinsics& camera2,
-                const int max_rays,
-                Eigen::Matrix2Xd* rays1,
-                Eigen::Matrix2Xd* rays2) {
-  const Eigen::Index num_inliers = pair.inliers.rows();
-  const Eigen::Index n = std::min<Eigen::Index>(num_inliers, max_rays);
-  rays1->resize(2, n);
-  rays2->resize(2, n);
-  Eigen::Index used = 0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Index row = i * num_inliers / n;
-    const uint32_t k1 = pair.inliers(row, 0);
-    const uint32_t k2 = pair.inliers(row, 1);
-    if (k1 >= keypoints1.rows() || k2 >= keypoints2.rows()) continue;
-    rays1->col(used) << (keypoints1(k1, 0) - camera1.cx) / camera1.fx,
-        (keypoints1(k1, 1) - camera1.cy) / camera1.fy;
-    rays2->col(used) << (keypoints2(k2, 0) - camera2.cx) / camera2.fx,
-        (keypoints2(k2, 1) - camera2.cy) / camera2.fy;
-    ++used;
-  }
-  rays1->conservativeResize(2, used);
-  rays2->conservativeResize(2, used);
+// Strong pairs the loop test rejects.
+size_t LoopFailures(const std::vector<LookalikeDecision>& decisions) {
+  return std::count_if(decisions.begin(),
+                       decisions.end(),
+                       [](const LookalikeDecision& decision) {
+                         return decision.reason ==
+                                LookalikeReason::kRotationLoop;
+                       });
 }
 
-// The relative rotations a pair's geometry gives: from E when COLMAP
-// verified it calibrated with trusted focal lengths (use_E), otherwise from
-// F and the cameras' (possibly self-calibrated) intrinsics; and the
-// candidates its homography allows.
-void MeasureRotations(const VerifiedTwoViewGeometry& pair,
-                      const PinholeIntrinsics& camera1,
-                      const PinholeIntrinsics& camera2,
-                      const bool use_E,
-                      const Eigen::Matrix2Xd& rays1,
-                      const Eigen::Matrix2Xd& rays2,
-                      PairRotations* rotations) {
-  Eigen::Matrix3d E = pair.E;
-  const bool has_E = pair.config == 2 && E.norm() >= 1e-12;
-  bool has_essential = true;
-  if (!(use_E && has_E)) {
-    if (pair.F.norm() >= 1e-12) {
-      E = camera2.K().transpose() * pair.F * camera1.K();
-    } else if (!has_E) {
-      has_essential = false;
+// The focal length check: the loop test must fail at least this many
+// strong pairs for it to run; the factors tried are 2^(k/3), |k| <= 3
+// (0.5-2), then the best one times 2^(+-1/6) unless it is 0.5 or 2 (the
+// check declines); a factor is taken only if it
+// leaves at most this share of the failures; the trials recover rotations
+// from this many inlier rays (cheirality needs few: verified inliers).
+constexpr size_t kFocalCheckMinFailures = 10;
+constexpr double kFocalCheckMaxShare = 0.75;
+constexpr int kFocalCheckRays = 10;
+
+// Trusted focal lengths (EXIF, the user) checked against the loops of the
+// verified graph. A photo cropped or resized after its EXIF was written
+// keeps a focal length off by the crop factor; every rotation is then off
+// a little, and chains around a turntable drift by tens of degrees
+// (bm-mary-rose: 1.52 x too short, docs/lookalike.md). Every trusted
+// camera's focal length is scaled by each factor in turn (rotations from F,
+// the strong pairs only), and the factor under which the loop test fails
+// the fewest strong pairs replaces it if it cuts them by a quarter (and the
+// full measurement agrees): a
+// look-alike pair fails under any factor, a real pair only under a wrong
+// one. Ties keep the factor nearest 1.
+void CheckTrustedFocalLengths(const std::vector<VerifiedTwoViewGeometry>& pairs,
+                              const std::vector<bool>& judged,
+                              const std::map<camera_t, bool>& trusted_focal,
+                              const PairFilterOptions& options,
+                              PairEvidenceCameras* evidence,
+                              std::vector<ViewGraphEdge>* edges,
+                              std::vector<PairRotations>* rotations,
+                              std::vector<LookalikeDecision>* decisions,
+                              PairFilterReport* report) {
+  const int num_images = static_cast<int>(evidence->image_cameras.size());
+  const size_t failures = LoopFailures(*decisions);
+  report->focal_check_failures_before = failures;
+  report->focal_check_failures_after = failures;
+  std::set<camera_t> checked;
+  for (const auto& [camera, trusted] : trusted_focal) {
+    if (trusted) checked.insert(camera);
+  }
+  if (failures < kFocalCheckMinFailures || checked.empty()) return;
+  std::vector<bool> strong(pairs.size(), false);
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const ViewGraphEdge& edge = (*edges)[p];
+    strong[p] = judged[p] &&
+                edge.num_inliers >= options.decision.min_evidence_inliers &&
+                (checked.count(evidence->image_cameras[edge.image1]) > 0 ||
+                 checked.count(evidence->image_cameras[edge.image2]) > 0);
+  }
+  const auto scaled = [&](const double factor) {
+    PairEvidenceCameras trial = *evidence;
+    for (const camera_t camera : checked) {
+      trial.intrinsics[camera].fx *= factor;
+      trial.intrinsics[camera].fy *= factor;
+      trial.use_colmap_E[camera] = false;
     }
-  }
-  rotations->has_essential =
-      has_essential &&
-      RotationFromEssential(E, rays1, rays2, &rotations->essential);
-  if (pair.H.norm() >= 1e-12) {
-    const Eigen::Matrix3d H = camera2.K().inverse() * pair.H * camera1.K();
-    rotations->homography = RotationsFromHomography(H, rays1, rays2);
-  }
-}
-
-// The mean direction of the inlier rays in each camera (the parallax test,
-// lookalike_decision.h).
-void MeanViewRays(const Eigen::Matrix2Xd& rays1,
-                  const Eigen::Matrix2Xd& rays2,
-                  ViewGraphEdge* edge) {
-  if (rays1.cols() == 0) return;
-  Eigen::Vector3d sum1 = Eigen::Vector3d::Zero();
-  Eigen::Vector3d sum2 = Eigen::Vector3d::Zero();
-  for (Eigen::Index i = 0; i < rays1.cols(); ++i) {
-    sum1 += rays1.col(i).homogeneous().normalized();
-    sum2 += rays2.col(i).homogeneous().normalized();
-  }
-  edge->has_view_rays = true;
-  edge->view_ray1 = sum1.normalized();
-  edge->view_ray2 = sum2.normalized();
-}
-
-// Which of a pair's rotations the tree may chain: a planar or panoramic
-// pair's (config 4-6) F does not determine the rotation, its homography
-// does when only one decomposition passes the cheirality test; a general
-// pair's comes from E (or F). Every other rotation the geometry allows is
-// an alternative for the loop test.
-void AssignRotations(const int config,
-                     const PairRotations& rotations,
-                     ViewGraphEdge* edge) {
-  const bool planar = config >= 4 && config <= 6;
-  edge->alternatives.clear();
-  if (planar && rotations.homography.size() == 1) {
-    edge->has_rotation = true;
-    edge->rotation = rotations.homography[0];
-    if (rotations.has_essential) {
-      edge->alternatives.push_back(rotations.essential);
+    return trial;
+  };
+  double best_factor = 1;
+  size_t best = failures;
+  const auto try_factor = [&](const double factor) {
+    std::vector<ViewGraphEdge> trial_edges = *edges;
+    std::vector<PairRotations> trial_rotations = *rotations;
+    MeasurePairEvidence(pairs,
+                        scaled(factor),
+                        strong,
+                        kFocalCheckRays,
+                        options.num_threads,
+                        &trial_edges,
+                        &trial_rotations);
+    const size_t trial_failures = LoopFailures(
+        DecideLookalikePairs(num_images, trial_edges, options.decision));
+    if (trial_failures < best) {
+      best = trial_failures;
+      best_factor = factor;
     }
+  };
+  for (const int k : {1, -1, 2, -2, 3, -3}) try_factor(std::pow(2.0, k / 3.0));
+  const double coarse = best_factor;
+  // The fewest failures at an end of the range: no minimum inside it, a
+  // sign that something else than the focal length drives them (a static
+  // background behind a turntable, bm-ethiopian-head).
+  if (coarse == 0.5 || coarse == 2.0) return;
+  for (const int k : {1, -1}) try_factor(coarse * std::pow(2.0, k / 6.0));
+  if (best > kFocalCheckMaxShare * failures) return;
+  // Confirmed on every pair with all its rays, or the focal lengths stay.
+  PairEvidenceCameras adopted = scaled(best_factor);
+  std::vector<ViewGraphEdge> adopted_edges = *edges;
+  std::vector<PairRotations> adopted_rotations = *rotations;
+  MeasurePairEvidence(pairs,
+                      adopted,
+                      judged,
+                      options.max_rays_per_pair,
+                      options.num_threads,
+                      &adopted_edges,
+                      &adopted_rotations);
+  std::vector<LookalikeDecision> adopted_decisions =
+      DecideLookalikePairs(num_images, adopted_edges, options.decision);
+  if (LoopFailures(adopted_decisions) > kFocalCheckMaxShare * failures) {
     return;
   }
-  edge->has_rotation = !planar && rotations.has_essential;
-  if (edge->has_rotation) {
-    edge->rotation = rotations.essential;
-  } else if (rotations.has_essential) {
-    edge->alternatives.push_back(rotations.essential);
-  }
-  edge->alternatives.insert(edge->alternatives.end(),
-                            rotations.homography.begin(),
-                            rotations.homography.end());
+  *evidence = std::move(adopted);
+  *edges = std::move(adopted_edges);
+  *rotations = std::move(adopted_rotations);
+  *decisions = std::move(adopted_decisions);
+  report->trusted_focal_scale = best_factor;
+  report->focal_check_failures_after = LoopFailures(*decisions);
 }
 
 // Replaces the intrinsics of the cameras without a trusted focal length by
@@ -338,6 +350,14 @@ PairFilterReport FindLookalikePairs(
   std::vector<ViewGraphEdge> edges(pairs.size());
   std::vector<PairRotations> rotations(pairs.size());
   std::vector<PairInlierCells> cells(pairs.size());
+  PairEvidenceCameras evidence;
+  evidence.keypoints = &keypoints;
+  evidence.intrinsics = cameras;
+  evidence.use_colmap_E = trusted_focal;
+  std::vector<bool> judged(pairs.size(), false);
+  for (const DatabaseImage& image : images) {
+    evidence.image_cameras.push_back(image.camera_id);
+  }
   ProgressLogger progress(pairs.size(), "look-alike filter", "pairs");
   ParallelFor(
       0, static_cast<int>(pairs.size()), options.num_threads, [&](int p) {
@@ -354,30 +374,21 @@ PairFilterReport FindLookalikePairs(
                                       keypoints[edge.image2],
                                       sizes.at(camera1),
                                       sizes.at(camera2));
-        if (rotation_trusted.at(camera1) && rotation_trusted.at(camera2)) {
-          Eigen::Matrix2Xd rays1;
-          Eigen::Matrix2Xd rays2;
-          InlierRays(pair,
-                     keypoints[edge.image1],
-                     keypoints[edge.image2],
-                     cameras.at(camera1),
-                     cameras.at(camera2),
-                     options.max_rays_per_pair,
-                     &rays1,
-                     &rays2);
-          MeasureRotations(
-              pair,
-              cameras.at(camera1),
-              cameras.at(camera2),
-              trusted_focal.at(camera1) && trusted_focal.at(camera2),
-              rays1,
-              rays2,
-              &rotations[p]);
-          AssignRotations(pair.config, rotations[p], &edge);
-          MeanViewRays(rays1, rays2, &edge);
-        }
         progress.Increment();
       });
+  // Rotations are measured between cameras whose focal length is trusted
+  // or self-calibrated (a vector<bool> is not written in parallel).
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    judged[p] = rotation_trusted.at(images[edges[p].image1].camera_id) &&
+                rotation_trusted.at(images[edges[p].image2].camera_id);
+  }
+  MeasurePairEvidence(pairs,
+                      evidence,
+                      judged,
+                      options.max_rays_per_pair,
+                      options.num_threads,
+                      &edges,
+                      &rotations);
   // The edges' strength: overlap where few of each image's partners reach
   // (inlier_grid.h), so that the backbone follows the real neighbours of an
   // image rather than the partners that match only its duplicate structure.
@@ -396,8 +407,19 @@ PairFilterReport FindLookalikePairs(
                                                    options.distinctive_share);
     }
   }
-  const std::vector<LookalikeDecision> decisions = DecideLookalikePairs(
+  std::vector<LookalikeDecision> decisions = DecideLookalikePairs(
       static_cast<int>(images.size()), edges, options.decision);
+  if (options.check_trusted_focal) {
+    CheckTrustedFocalLengths(pairs,
+                             judged,
+                             trusted_focal,
+                             options,
+                             &evidence,
+                             &edges,
+                             &rotations,
+                             &decisions,
+                             &report);
+  }
   for (size_t p = 0; p < pairs.size(); ++p) {
     PairFilterEntry entry;
     entry.pair_id = pairs[p].pair_id;
@@ -511,6 +533,14 @@ void PrintPairFilterReport(const PairFilterReport& report,
         report.median_focal_scale,
         report.focal_cost_before,
         report.focal_cost_after);
+  }
+  if (report.trusted_focal_scale != 1) {
+    std::printf(
+        "  trusted focal lengths scaled by %.3f: the loop test failed %zu "
+        "strong pairs with them, %zu after\n",
+        report.trusted_focal_scale,
+        report.focal_check_failures_before,
+        report.focal_check_failures_after);
   }
   if (report.num_uncalibrated_cameras > 0) {
     std::printf(

@@ -5,6 +5,7 @@
 
 #include "disambiguation/focal_calibration.h"
 #include "disambiguation/lookalike_decision.h"
+#include "disambiguation/pair_evidence.h"
 #include "scene/database.h"
 #include "scene/two_view_geometry_store.h"
 
@@ -34,6 +35,13 @@ struct PairFilterOptions {
   bool self_calibrate_focal = true;  // default true
   FocalCalibrationOptions focal_calibration;
 
+  // Trusted focal lengths (prior_focal_length 1: EXIF or the user) are
+  // checked against the loops of the verified graph: when the loop test
+  // fails many strong pairs, one factor for all of them (0.5-2) that at
+  // least cuts the failures by a quarter replaces them (a cropped photo's EXIF
+  // focal length is off by the crop factor; pair_filter.cc).
+  bool check_trusted_focal = true;  // default true
+
   // -1: all cores; the decisions do not depend on it.
   int num_threads = -1;
 
@@ -42,15 +50,6 @@ struct PairFilterOptions {
   std::string pairs_csv_path = "";
 
   void Check() const;
-};
-
-// The relative rotations (x2 = R x1 + t) a verified pair's geometry gives.
-struct PairRotations {
-  // From E (or F and the intrinsics), disambiguated by cheirality.
-  bool has_essential = false;
-  Eigen::Matrix3d essential = Eigen::Matrix3d::Identity();
-  // The decompositions of its homography that pass the cheirality test.
-  std::vector<Eigen::Matrix3d> homography;
 };
 
 // One verified pair with its decision.
@@ -81,6 +80,12 @@ struct PairFilterReport {
   // for their pairs.
   size_t num_uncalibrated_cameras = 0;
   double median_focal_scale = 1;
+  // The focal length check: the factor applied to the trusted focal
+  // lengths (1: kept) and the strong pairs failing the loop test with the
+  // focal lengths before and after it.
+  double trusted_focal_scale = 1;
+  size_t focal_check_failures_before = 0;
+  size_t focal_check_failures_after = 0;
   double focal_cost_before = 0;
   double focal_cost_after = 0;
   double seconds = 0;

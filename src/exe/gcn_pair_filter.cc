@@ -36,6 +36,10 @@ int RunGcnPairFilter(int argc, char** argv) {
   manager.AddDefaultOption("PairFilter.max_rotation_error",
                            &options.decision.max_rotation_error,
                            "degrees");
+  manager.AddDefaultOption("PairFilter.check_trusted_focal",
+                           &options.check_trusted_focal,
+                           "check trusted (EXIF) focal lengths against the "
+                           "loops of the verified graph");
   manager.AddDefaultOption(
       "PairFilter.min_evidence_inliers",
       &options.decision.min_evidence_inliers,

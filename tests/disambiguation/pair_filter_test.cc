@@ -89,9 +89,16 @@ void Insert(sqlite3* db,
 // other face (n/2 steps away), through the print alone. Returns the
 // look-alike pairs' image names. The pairs are verified calibrated
 // (config 2, E), as COLMAP does only when both focal lengths are trusted
-// (trusted_focal: prior_focal_length 1).
+// (trusted_focal: prior_focal_length 1). With stored_focal_factor != 1 the
+// cameras table holds the focal length times it (an EXIF focal length of a
+// cropped photo) and each pair also its F: E is then what COLMAP estimates
+// with the stored focal length, K_stored^T F K_stored.
 std::set<std::pair<std::string, std::string>> WriteRingDatabase(
-    const std::string& path, int n, int reach, bool trusted_focal = true) {
+    const std::string& path,
+    int n,
+    int reach,
+    bool trusted_focal = true,
+    double stored_focal_factor = 1.0) {
   ExecuteSql(path, kColmap38Schema);
   std::vector<Eigen::Vector3d> print;  // front face, y = -1
   for (int k = 0; k < 60; ++k) {
@@ -118,7 +125,14 @@ std::set<std::pair<std::string, std::string>> WriteRingDatabase(
   EXPECT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
   std::vector<RingCamera> cameras;
   std::vector<std::map<int, int>> keypoint_of(n);  // point -> keypoint
-  const double params[4] = {kFocal, kFocal, kWidth / 2.0, kHeight / 2.0};
+  const double params[4] = {kFocal * stored_focal_factor,
+                            kFocal * stored_focal_factor,
+                            kWidth / 2.0,
+                            kHeight / 2.0};
+  Eigen::Matrix3d K;
+  K << kFocal, 0, kWidth / 2.0, 0, kFocal, kHeight / 2.0, 0, 0, 1;
+  Eigen::Matrix3d K_stored = K;
+  K_stored.topLeftCorner<2, 2>() *= stored_focal_factor;
   for (int i = 0; i < n; ++i) {
     // Uneven spacing and heights: no two cameras see the print from the
     // same place (a look-alike pair with no baseline has no rotation).
@@ -178,16 +192,30 @@ std::set<std::pair<std::string, std::string>> WriteRingDatabase(
       if (inliers.size() < 30) continue;
       const Eigen::Matrix3d R = other.R * cameras[i].R.transpose();
       const Eigen::Vector3d t = other.t - R * cameras[i].t;
-      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> E = Skew(t) * R;
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor> E = Skew(t) * R;
       const image_pair_t pair_id =
           static_cast<image_pair_t>(i + 1) * 2147483647 + (j + 1);
-      Insert(db,
-             "INSERT INTO two_view_geometries (pair_id, rows, cols, data, "
-             "config, E) VALUES (" +
-                 std::to_string(pair_id) + ", " +
-                 std::to_string(inliers.size() / 2) + ", 2, ?, 2, ?)",
-             {{inliers.data(), static_cast<int>(inliers.size() * 4)},
-              {E.data(), 72}});
+      if (stored_focal_factor == 1.0) {
+        Insert(db,
+               "INSERT INTO two_view_geometries (pair_id, rows, cols, data, "
+               "config, E) VALUES (" +
+                   std::to_string(pair_id) + ", " +
+                   std::to_string(inliers.size() / 2) + ", 2, ?, 2, ?)",
+               {{inliers.data(), static_cast<int>(inliers.size() * 4)},
+                {E.data(), 72}});
+      } else {
+        const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> F =
+            K.transpose().inverse() * E * K.inverse();
+        E = K_stored.transpose() * F * K_stored;
+        Insert(db,
+               "INSERT INTO two_view_geometries (pair_id, rows, cols, data, "
+               "config, F, E) VALUES (" +
+                   std::to_string(pair_id) + ", " +
+                   std::to_string(inliers.size() / 2) + ", 2, ?, 2, ?, ?)",
+               {{inliers.data(), static_cast<int>(inliers.size() * 4)},
+                {F.data(), 72},
+                {E.data(), 72}});
+      }
       if (fake) {
         lookalikes.emplace(
             "img" + std::string(i < 10 ? "0" : "") + std::to_string(i) + ".jpg",
@@ -305,6 +333,35 @@ TEST(PairFilter, HiddenPairsLeaveTheMapperAndComeBackByteForByte) {
                         "= 'gcn_lookalike_pairs'"),
             0);
   EXPECT_EQ(RestoreLookalikePairs(path), 0u);
+}
+
+// The ring photographed with a trusted focal length 1.5 x too short (the
+// EXIF focal length of a cropped photo): every rotation is off and the
+// chains drift; the loop check finds the factor, and with it the filter
+// rejects the look-alike pairs and only them.
+TEST(PairFilter, AWrongTrustedFocalLengthIsCheckedAgainstTheLoops) {
+  TemporaryDirectory dir("colmap_gcn_pair_filter");
+  const std::string path = JoinPaths(dir.Path(), "ring.db");
+  const auto lookalikes =
+      WriteRingDatabase(path, 20, 3, /*trusted_focal=*/true, 1 / 1.5);
+  const TwoViewGeometryStore database(path);
+  PairFilterOptions options;
+  options.num_threads = 1;
+  options.check_trusted_focal = false;
+  const PairFilterReport unchecked = FindLookalikePairs(database, options);
+  options.check_trusted_focal = true;
+  const PairFilterReport checked = FindLookalikePairs(database, options);
+  EXPECT_EQ(unchecked.trusted_focal_scale, 1.0);
+  EXPECT_GT(unchecked.num_rejected, lookalikes.size());
+  EXPECT_LT(checked.focal_check_failures_after,
+            checked.focal_check_failures_before);
+  EXPECT_NEAR(checked.trusted_focal_scale, 1.5, 0.1);
+  EXPECT_EQ(Rejected(checked), lookalikes);
+  // The check decides the same with any thread count.
+  options.num_threads = 4;
+  const PairFilterReport threaded = FindLookalikePairs(database, options);
+  EXPECT_EQ(threaded.trusted_focal_scale, checked.trusted_focal_scale);
+  EXPECT_EQ(Rejected(threaded), Rejected(checked));
 }
 
 TEST(PairFilter, AnOrdinaryRingLosesNothing) {
