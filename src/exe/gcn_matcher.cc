@@ -43,6 +43,11 @@ void AddGcnMatchingOptions(OptionManager* manager,
                             "hide look-alike (duplicate structure) pairs from "
                             "the mapper after matching (docs/lookalike.md); "
                             "0: off");
+  manager->AddDefaultOption(
+      "PairFilter.check_trusted_focal",
+      &options->lookalike_filter.check_trusted_focal,
+      "the look-alike filter checks trusted (EXIF) focal lengths against "
+      "the view graph's loops; 0: uses them as they are");
   manager->AddDefaultOption("SiftMatching.min_num_inliers",
                             &matching.min_num_inliers,
                             "COLMAP's verification threshold; also what a "
