@@ -37,9 +37,9 @@ size_t LoopFailures(const std::vector<LookalikeDecision>& decisions) {
 // The focal length check: the loop test must fail at least this many
 // strong pairs for it to run; the factors tried are 2^(k/3), |k| <= 3
 // (0.5-2), then the best one times 2^(+-1/6) unless it is 0.5 or 2 (the
-// check declines); a factor is taken only if it
-// leaves at most this share of the failures; the trials recover rotations
-// from this many inlier rays (cheirality needs few: verified inliers).
+// check declines); a factor is taken only if it leaves at most this share
+// of the failures; the trials recover rotations from this many inlier rays
+// (cheirality needs few: verified inliers).
 constexpr size_t kFocalCheckMinFailures = 10;
 constexpr double kFocalCheckMaxShare = 0.75;
 constexpr int kFocalCheckRays = 10;
@@ -51,10 +51,9 @@ constexpr int kFocalCheckRays = 10;
 // (bm-mary-rose: 1.52 x too short, docs/lookalike.md). Every trusted
 // camera's focal length is scaled by each factor in turn (rotations from F,
 // the strong pairs only), and the factor under which the loop test fails
-// the fewest strong pairs replaces it if it cuts them by a quarter (and the
-// full measurement agrees): a
-// look-alike pair fails under any factor, a real pair only under a wrong
-// one. Ties keep the factor nearest 1.
+// the fewest strong pairs replaces it if it cuts them by a quarter and the
+// full measurement agrees: a look-alike pair fails under any factor, a real
+// pair only under a wrong one. Ties keep the factor nearest 1.
 void CheckTrustedFocalLengths(const std::vector<VerifiedTwoViewGeometry>& pairs,
                               const std::vector<bool>& judged,
                               const std::map<camera_t, bool>& trusted_focal,

@@ -37,9 +37,9 @@ struct PairFilterOptions {
 
   // Trusted focal lengths (prior_focal_length 1: EXIF or the user) are
   // checked against the loops of the verified graph: when the loop test
-  // fails many strong pairs, one factor for all of them (0.5-2) that at
-  // least cuts the failures by a quarter replaces them (a cropped photo's EXIF
-  // focal length is off by the crop factor; pair_filter.cc).
+  // fails many strong pairs, one factor for all of them (0.5-2) that cuts
+  // the failures by at least a quarter replaces them (a cropped photo's
+  // EXIF focal length is off by the crop factor; pair_filter.cc).
   bool check_trusted_focal = true;  // default true
 
   // -1: all cores; the decisions do not depend on it.
