@@ -101,8 +101,7 @@ def report(tree,tag):
     # chained vs gt error over all images in the same comp: rel to first
     fl=collections.Counter(E[e]['lab'] for e in fails)
     print(tag,"strong non-tree:",len(res),"fail:",len(fails),dict(fl),"| tree edges >30deg off GT:",[(E[e]['n1'],E[e]['n2'],E[e]['lab'],E[e]['inl'],E[e]['st']) for e in bad])
-    return res
-res=report(tree,"before")
+report(tree,"before")
 WEIGHTED=len(sys.argv)>4 and sys.argv[4]=='weighted'
 def total(res): return sum((E[e]['st'] if WEIGHTED else 1) for e,ok in res.items() if ok)
 for it in range(20):
