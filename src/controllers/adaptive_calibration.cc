@@ -205,6 +205,41 @@ std::vector<int> ComponentLabels(
   return parent;
 }
 
+std::vector<int> GrowthClusters(const std::vector<std::vector<int>>& neighbours,
+                                const std::vector<std::pair<int, int>>& seeds,
+                                int min_views) {
+  const int num_vertices = static_cast<int>(neighbours.size());
+  min_views = std::max(1, min_views);
+  std::vector<int> label(neighbours.size(), -1);
+  std::vector<int> views(neighbours.size(), 0);  // in the growing cluster
+  std::vector<int> touched;
+  std::vector<int> queue;
+  for (const auto& [a, b] : seeds) {
+    if (a < 0 || b < 0 || a >= num_vertices || b >= num_vertices || a == b ||
+        label[a] >= 0 || label[b] >= 0) {
+      continue;
+    }
+    queue = {a, b};
+    label[a] = label[b] = a;
+    for (size_t next = 0; next < queue.size(); ++next) {
+      for (const int w : neighbours[queue[next]]) {
+        if (label[w] >= 0) continue;
+        if (views[w]++ == 0) touched.push_back(w);
+        if (views[w] == min_views) {
+          label[w] = a;
+          queue.push_back(w);
+        }
+      }
+    }
+    for (const int w : touched) views[w] = 0;
+    touched.clear();
+  }
+  for (int v = 0; v < num_vertices; ++v) {
+    if (label[v] < 0) label[v] = v;
+  }
+  return label;
+}
+
 size_t CountComponents(const std::vector<std::vector<int>>& neighbours) {
   const std::vector<int> labels = ComponentLabels(neighbours);
   size_t components = 0;

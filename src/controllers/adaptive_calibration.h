@@ -75,4 +75,15 @@ size_t CountComponents(const std::vector<std::vector<int>>& neighbours);
 std::vector<int> ComponentLabels(
     const std::vector<std::vector<int>>& neighbours);
 
+// The models an incremental mapper could grow over a graph: from each seed
+// edge (strongest first) whose two vertices are in no cluster yet, the
+// cluster adds every vertex with at least `min_views` neighbours in it,
+// until none is left (bootstrap percolation). Each vertex's cluster,
+// labelled by its seed's first vertex; a vertex in no cluster is labelled
+// by itself. A chain of triangles sharing single vertices is one connected
+// component but not one cluster at min_views 2.
+std::vector<int> GrowthClusters(const std::vector<std::vector<int>>& neighbours,
+                                const std::vector<std::pair<int, int>>& seeds,
+                                int min_views);
+
 }  // namespace colmap_gcn

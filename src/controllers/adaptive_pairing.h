@@ -115,13 +115,13 @@ struct AdaptivePairingOptions {
   // stops short of exhaustive's budget. 0: no cap.
   int max_strong_partners = 20;
 
-  // kEnough: once nothing else is asked for, every component of images
-  // joined by strong pairs that close a strong triangle (two or more
-  // images) tries, one a round, its most probable candidates that lead to
-  // another such component, until it is joined or it has spent this many
-  // attempts still leading out of it. A block of photos whose images have
-  // all found their partners inside it is otherwise a model of its own.
-  // 0: none.
+  // kEnough: once nothing else is asked for, every model the strong pairs
+  // can grow (GrowthClusters: from the strongest pair, an image joins once
+  // two of its strong partners are in) of three or more images tries, one
+  // a round, its most probable candidates that lead to another such model,
+  // until they grow into one or it has spent this many attempts still
+  // leading out of it. A block of photos whose images have all found their
+  // partners inside it is otherwise a model of its own. 0: none.
   int component_patience = 5;
 
   // Throws OptionError naming the first invalid field.
@@ -224,7 +224,7 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<int> GuaranteeBlock(const std::vector<int>& untried,
                                   const std::vector<uint8_t>& taken,
                                   size_t budget) const;
-  // kEnough: one candidate per component over strong triangles, its most
+  // kEnough: one candidate per model the strong pairs can grow, its most
   // probable one leading to another, within component_patience (from the
   // candidates uncapped by max_strong_partners).
   std::vector<int> BridgeBlock(const std::vector<int>& untried,
@@ -287,17 +287,22 @@ struct AdaptiveGcnPairingOptions {
   // Weight of embedding similarity in the prior: with w > 0 the candidates
   // are the union of the GCN's and the similarity kNN's (knn, k = 100),
   // scored (1 - w) * the GCN score's percentile + w * the similarity's
-  // (CombinePriors); 0: the GCN score alone. The GCN's scores alone stop
+  // percentile in its images' own lists (CombinePriors); 0: the GCN score
+  // alone. The GCN's scores alone stop
   // the rounds early: they rank many real pairs low (docs/adaptive.md).
   double similarity_weight = 0.5;
   KnnPairingOptions knn;
   void Check() const;
 };
 
-// Two candidate lists' scores as percentiles within their own list (ties
-// share their mean percentile), combined as (1 - weight_b) * a's +
-// weight_b * b's over the union of both (a pair missing from a list has
-// percentile 0 there); unordered pairs, sorted by (smaller id, larger id).
+// Two candidate lists combined over their union as (1 - weight_b) * a's
+// percentile + weight_b * b's (a pair missing from a list has percentile 0
+// there); unordered pairs, sorted by (smaller id, larger id). a's scores
+// (the GCN's probabilities) are ranked over the whole list; b's
+// (similarities, whose level differs from image to image) within each
+// image's own list, the better of the pair's two images counting, as kNN
+// retrieval ranks: a photo that looks little like any other still has its
+// best partners near the top. Ties share their mean percentile.
 std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
                                          const std::vector<PairCandidate>& b,
                                          double weight_b);

@@ -6,6 +6,15 @@
 #include "controllers/adaptive_pairing.h"
 
 namespace colmap_gcn {
+namespace {
+
+// An image joins a growing model once this many of its strong partners are
+// in it (GrowthClusters).
+constexpr int kMinRegistrationViews = 2;
+// Clusters that grew beyond their seed pair bridge to each other.
+constexpr int kMinClusterImages = 3;
+
+}  // namespace
 
 std::vector<int> AdaptivePairGenerator::GuaranteeBlock(
     const std::vector<int>& untried,
@@ -74,19 +83,25 @@ std::vector<int> AdaptivePairGenerator::ConnectivityBlock(
 std::vector<int> AdaptivePairGenerator::BridgeBlock(
     const std::vector<int>& untried, size_t budget) const {
   if (options_.component_patience <= 0) return {};
-  // Components over the strong pairs that close a strong triangle: the
-  // mapper grows a model across a pair whose two images see a third
-  // image's points, while a lone strong pair between two blocks often
-  // leaves them two models. A lone bridge, once strong, raises the support
-  // of the candidates beside it, which the next attempts then take.
-  std::vector<std::vector<int>> sturdy(image_ids_.size());
+  // The models the mapper could grow: from the strongest pair, an image
+  // joins once two of its strong partners are in (it sees points they
+  // triangulated). A chain of triangles that share single images is
+  // connected, but the mapper stops at it and starts a second model.
+  // A lone bridge, once strong, raises the support of the candidates
+  // beside it, which the next attempts then take.
+  std::vector<int> strong;
   for (const int c : yielded_) {
-    const Candidate& candidate = candidates_[c];
-    if (!IsStrong(candidate) || CommonStrongNeighbours(c) == 0) continue;
-    sturdy[candidate.row1].push_back(candidate.row2);
-    sturdy[candidate.row2].push_back(candidate.row1);
+    if (IsStrong(candidates_[c])) strong.push_back(c);
   }
-  const std::vector<int> component = ComponentLabels(sturdy);
+  std::stable_sort(strong.begin(), strong.end(), [&](int a, int b) {
+    return candidates_[a].num_inliers > candidates_[b].num_inliers;
+  });
+  std::vector<std::pair<int, int>> seeds;
+  for (const int c : strong) {
+    seeds.emplace_back(candidates_[c].row1, candidates_[c].row2);
+  }
+  const std::vector<int> component =
+      GrowthClusters(strong_neighbours_, seeds, kMinRegistrationViews);
   std::vector<int> size(image_ids_.size(), 0);
   for (const int label : component) ++size[label];
   // A component's spent patience: its earlier bridging attempts that still
@@ -103,14 +118,15 @@ std::vector<int> AdaptivePairGenerator::BridgeBlock(
     ++spent[a];
     ++spent[b];
   }
-  // Images outside every triangle have their own guarantee
-  // (image_patience); bridges join components of two or more images, so a
-  // component's patience is not spent on images that match nothing.
+  // Images outside every cluster, and a seed pair that grew no further,
+  // have their own guarantee (image_patience), so no cluster's patience is
+  // spent on images that match nothing.
   // One attempt per component and round, so that a bridge found raises the
   // candidates beside it before the next attempt is chosen.
   std::vector<int> wanted(image_ids_.size(), 0);
   for (size_t label = 0; label < image_ids_.size(); ++label) {
-    if (size[label] >= 2 && spent[label] < options_.component_patience) {
+    if (size[label] >= kMinClusterImages &&
+        spent[label] < options_.component_patience) {
       wanted[label] = 1;
     }
   }
@@ -119,7 +135,7 @@ std::vector<int> AdaptivePairGenerator::BridgeBlock(
     if (block.size() >= budget) break;
     const int a = component[candidates_[c].row1];
     const int b = component[candidates_[c].row2];
-    if (a == b || size[a] < 2 || size[b] < 2 ||
+    if (a == b || size[a] < kMinClusterImages || size[b] < kMinClusterImages ||
         (wanted[a] == 0 && wanted[b] == 0)) {
       continue;
     }

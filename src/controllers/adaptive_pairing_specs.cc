@@ -56,13 +56,54 @@ std::unordered_map<image_pair_t, double> ScorePercentiles(
   return percentiles;
 }
 
+// Each unordered pair's percentile within the better of its two images'
+// own lists (every pair of the list that includes the image, by score;
+// ties share their mean percentile), by pair id: the way kNN retrieval
+// ranks, so an image whose scores are all low still has its best pairs.
+std::unordered_map<image_pair_t, double> ImageRankPercentiles(
+    const std::vector<PairCandidate>& candidates) {
+  std::unordered_map<image_pair_t, float> best;
+  for (const PairCandidate& candidate : candidates) {
+    if (candidate.image_id1 == candidate.image_id2) continue;
+    const auto [it, inserted] = best.emplace(
+        ImagePairToPairId(candidate.image_id1, candidate.image_id2),
+        candidate.score);
+    if (!inserted) it->second = std::max(it->second, candidate.score);
+  }
+  std::unordered_map<image_t, std::vector<float>> per_image;
+  for (const auto& [pair_id, score] : best) {
+    const ImagePair pair = PairIdToImagePair(pair_id);
+    per_image[pair.first].push_back(score);
+    per_image[pair.second].push_back(score);
+  }
+  for (auto& [image_id, scores] : per_image) {
+    std::sort(scores.begin(), scores.end());
+  }
+  const auto percentile = [&](image_t image_id, float score) {
+    const std::vector<float>& scores = per_image.at(image_id);
+    const double low = static_cast<double>(
+        std::lower_bound(scores.begin(), scores.end(), score) - scores.begin());
+    const double high = static_cast<double>(
+        std::upper_bound(scores.begin(), scores.end(), score) - scores.begin());
+    return (low + high + 1) / (2 * static_cast<double>(scores.size()));
+  };
+  std::unordered_map<image_pair_t, double> percentiles;
+  for (const auto& [pair_id, score] : best) {
+    const ImagePair pair = PairIdToImagePair(pair_id);
+    percentiles.emplace(pair_id,
+                        std::max(percentile(pair.first, score),
+                                 percentile(pair.second, score)));
+  }
+  return percentiles;
+}
+
 }  // namespace
 
 std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
                                          const std::vector<PairCandidate>& b,
                                          double weight_b) {
   const std::unordered_map<image_pair_t, double> pa = ScorePercentiles(a);
-  const std::unordered_map<image_pair_t, double> pb = ScorePercentiles(b);
+  const std::unordered_map<image_pair_t, double> pb = ImageRankPercentiles(b);
   std::vector<image_pair_t> pair_ids;
   for (const auto& [pair_id, p] : pa) pair_ids.push_back(pair_id);
   for (const auto& [pair_id, p] : pb) {

@@ -4,12 +4,15 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 
+#include "controllers/adaptive_calibration.h"
 #include "controllers/adaptive_pairing.h"
 #include "evaluation/collection.h"
 #include "pairing/gcn_model_pairing.h"
 #include "pairing/knn_pairing.h"
+#include "pairing/pairs_io.h"
 #include "scene/database_copy.h"
 #include "util/error.h"
 
@@ -84,6 +87,39 @@ std::vector<ImagePair> VerificationTable::StrongPairs(int strong_cut) const {
   return pairs;
 }
 
+namespace {
+
+size_t LargestGrownModel(std::vector<std::pair<ImagePair, size_t>> strong) {
+  std::stable_sort(
+      strong.begin(), strong.end(), [](const auto& a, const auto& b) {
+        return a.second > b.second;
+      });
+  std::unordered_map<image_t, int> rows;
+  std::vector<std::vector<int>> neighbours;
+  std::vector<std::pair<int, int>> seeds;
+  const auto row = [&](image_t image_id) {
+    const auto [it, inserted] =
+        rows.emplace(image_id, static_cast<int>(neighbours.size()));
+    if (inserted) neighbours.emplace_back();
+    return it->second;
+  };
+  for (const auto& [pair, inliers] : strong) {
+    const int a = row(pair.first);
+    const int b = row(pair.second);
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+    seeds.emplace_back(a, b);
+  }
+  std::vector<size_t> size(neighbours.size(), 0);
+  size_t largest = 0;
+  for (const int label : GrowthClusters(neighbours, seeds, 2)) {
+    largest = std::max(largest, ++size[label]);
+  }
+  return largest;
+}
+
+}  // namespace
+
 PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,
                                const VerificationTable& table,
                                const PairLabels* labels,
@@ -93,6 +129,7 @@ PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,
   std::set<image_t> with_strong;
   std::set<ImageNamePair> matchable_found;
   std::set<ImageNamePair> matchable;
+  std::vector<std::pair<ImagePair, size_t>> strong;  // with their inliers
   if (labels != nullptr) {
     for (const ImageNamePair& pair :
          labels->MatchablePairs(PairLabelOptions())) {
@@ -112,6 +149,7 @@ PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,
       ++quality.num_verified;
       if (verification.num_inliers >= static_cast<size_t>(strong_cut)) {
         ++quality.num_strong;
+        strong.push_back({pair, verification.num_inliers});
         with_strong.insert(pair.first);
         with_strong.insert(pair.second);
       }
@@ -128,6 +166,7 @@ PairSetQuality EvaluatePairSet(const std::vector<ImagePair>& pairs,
   }
   quality.num_matchable_found = matchable_found.size();
   quality.num_images_with_strong = with_strong.size();
+  quality.num_images_grown = LargestGrownModel(strong);
   return quality;
 }
 
@@ -335,6 +374,9 @@ AdaptiveSimulationReport RunAdaptiveSimulation(
   const std::vector<SimulatedRound> rounds =
       SimulatePairGenerator(generator.get(), table, labels.get(), 1, &pairs);
   const auto* adaptive = dynamic_cast<AdaptivePairGenerator*>(generator.get());
+  if (!options.matching.matching.pairs_path.empty()) {  // in yield order
+    WritePairsFile(options.matching.matching.pairs_path, pairs, table.Images());
+  }
 
   AdaptiveSimulationReport report;
   report.num_images = table.Images().size();

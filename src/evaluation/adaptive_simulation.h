@@ -54,6 +54,11 @@ struct PairSetQuality {
   size_t num_matchable_found = 0;
   size_t num_cross_scene = 0;  // pairs across a collection's scenes
   size_t num_images_with_strong = 0;
+  // Images of the largest model the strong pairs can grow: from the
+  // strongest pair, an image joins once two of its strong partners are in
+  // (GrowthClusters); fewer than the images with a strong pair foretells
+  // COLMAP's mapper splitting the scene.
+  size_t num_images_grown = 0;
   double Recall() const {
     return num_matchable == 0 ? 0.0
                               : static_cast<double>(num_matchable_found) /

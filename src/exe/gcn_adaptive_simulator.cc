@@ -13,7 +13,7 @@ namespace colmap_gcn {
 namespace {
 
 void PrintQualityHeader() {
-  std::printf("%-22s %7s %7s %7s %7s %8s %7s %9s\n",
+  std::printf("%-22s %7s %7s %7s %7s %8s %7s %9s %6s\n",
               "method",
               "TAM",
               "UM",
@@ -21,12 +21,13 @@ void PrintQualityHeader() {
               "found",
               "recall",
               "cross",
-              "img_strong");
+              "img_strong",
+              "grown");
 }
 
 void PrintQuality(const NamedPairSetQuality& line) {
   const PairSetQuality& quality = line.quality;
-  std::printf("%-22s %7zu %7zu %7zu %7zu %8.3f %7zu %9zu\n",
+  std::printf("%-22s %7zu %7zu %7zu %7zu %8.3f %7zu %9zu %6zu\n",
               line.name.c_str(),
               quality.num_pairs,
               quality.num_verified,
@@ -34,7 +35,8 @@ void PrintQuality(const NamedPairSetQuality& line) {
               quality.num_matchable_found,
               quality.Recall(),
               quality.num_cross_scene,
-              quality.num_images_with_strong);
+              quality.num_images_with_strong,
+              quality.num_images_grown);
 }
 
 }  // namespace

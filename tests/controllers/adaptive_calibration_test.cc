@@ -147,5 +147,31 @@ TEST(ComponentLabels, TheSmallestVertexOfEachComponent) {
   EXPECT_TRUE(ComponentLabels({}).empty());
 }
 
+TEST(GrowthClusters, AnImageJoinsWithTwoPartnersInside) {
+  // Triangles 0-1-2 and 2-3-4 share image 2: one connected graph, two
+  // models. Seeds strongest first; an unknown or repeated seed is skipped.
+  const std::vector<std::vector<int>> bowtie = {
+      {1, 2}, {0, 2}, {0, 1, 3, 4}, {2, 4}, {2, 3}};
+  EXPECT_EQ(CountComponents(bowtie), 1u);
+  EXPECT_EQ(GrowthClusters(bowtie, {{0, 1}, {7, 1}, {3, 4}, {2, 3}}, 2),
+            (std::vector<int>{0, 0, 0, 3, 3}));
+  // At one view it is the connected component.
+  EXPECT_EQ(GrowthClusters(bowtie, {{0, 1}}, 1),
+            (std::vector<int>{0, 0, 0, 0, 0}));
+  // A strip where each image overlaps the next two grows into one model;
+  // an image without a seed is its own label.
+  std::vector<std::vector<int>> strip(7);
+  for (int i = 0; i < 6; ++i) {
+    for (int j = i + 1; j <= std::min(5, i + 2); ++j) {
+      strip[i].push_back(j);
+      strip[j].push_back(i);
+    }
+  }
+  EXPECT_EQ(GrowthClusters(strip, {{2, 3}}, 2),
+            (std::vector<int>{2, 2, 2, 2, 2, 2, 6}));
+  EXPECT_EQ(GrowthClusters(strip, {}, 2),
+            (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+}
+
 }  // namespace
 }  // namespace colmap_gcn

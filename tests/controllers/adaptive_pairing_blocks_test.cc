@@ -214,5 +214,39 @@ TEST(AdaptivePairGenerator, StrongComponentsKeepTryingToJoin) {
   EXPECT_FALSE(found);
 }
 
+TEST(AdaptivePairGenerator, BlocksJoinedThroughOneImageStillBridge) {
+  // Image 25 overlaps 11, 12 of one block and 13, 14 of the other: the
+  // strong triangles 11-12-25 and 25-13-14 make one connected graph, but
+  // a mapper grown from the first block registers 25 and stops at 13 (one
+  // registered partner). The blocks still try their candidates between
+  // them and find the bridge at rank 2.
+  TwoBlockScene scene(/*bridge=*/2);
+  scene.image_ids.push_back(25);
+  for (const image_t other : {11, 12, 13, 14}) {
+    scene.candidates.push_back({other, 25, 0.5f});
+  }
+  const auto verify = [&](const ImagePair& pair) {
+    if (std::max(pair.first, pair.second) != 25) return scene.Verify(pair);
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    verification.config = 2;
+    verification.num_inliers = 400;
+    return verification;
+  };
+  AdaptivePairingOptions options;
+  options.exploration_fraction = 0;
+  AdaptivePairGenerator generator(options, scene.image_ids, scene.candidates);
+  size_t num_cross = 0;
+  bool found = false;
+  for (const ImagePair& pair : Flatten(RunToTheEnd(&generator, verify))) {
+    if (std::max(pair.first, pair.second) == 25) continue;
+    num_cross += TwoBlockScene::Crosses(pair) ? 1 : 0;
+    found |= TwoBlockScene::Crosses(pair) && verify(pair).num_inliers > 0;
+  }
+  EXPECT_TRUE(found);
+  EXPECT_LE(num_cross, 5u);
+}
+
 }  // namespace
 }  // namespace colmap_gcn

@@ -317,7 +317,7 @@ TEST(CombinePriors, PercentilesOfBothListsOverTheirUnion) {
   // a: (1,2) best, (1,3) and (2,3) tied, duplicates keep the higher score.
   const std::vector<PairCandidate> a = {
       {1, 2, 0.9f}, {3, 1, 0.2f}, {2, 3, 0.2f}, {2, 1, 0.1f}};
-  // b: (1,3) best, (3,4) only here.
+  // b: (1,3) best, (3,4) only here; ranked within each image's list.
   const std::vector<PairCandidate> b = {{1, 3, 0.8f}, {4, 3, 0.5f}};
   const std::vector<PairCandidate> c = CombinePriors(a, b, 0.5);
   ASSERT_EQ(c.size(), 4u);
@@ -328,12 +328,13 @@ TEST(CombinePriors, PercentilesOfBothListsOverTheirUnion) {
     ADD_FAILURE() << "no pair " << i << "-" << j;
     return -1.f;
   };
-  // a: (1,3),(2,3) share percentile (1 + 2) / 2 / 3 = 1/2, (1,2) 1; b: (3,4)
-  // 1/2, (1,3) 1.
+  // a: (1,3),(2,3) share percentile (1 + 2) / 2 / 3 = 1/2, (1,2) 1. b:
+  // (1,3) is image 1's best and image 3's; (3,4) is image 3's second of
+  // two (1/2) but image 4's only pair (1): the better image counts.
   EXPECT_FLOAT_EQ(score(1, 2), 0.5f);
   EXPECT_FLOAT_EQ(score(1, 3), 0.75f);
   EXPECT_FLOAT_EQ(score(2, 3), 0.25f);
-  EXPECT_FLOAT_EQ(score(3, 4), 0.25f);
+  EXPECT_FLOAT_EQ(score(3, 4), 0.5f);
   // Sorted by (smaller id, larger id), the same in any input order.
   for (size_t i = 1; i < c.size(); ++i) {
     EXPECT_LT(std::make_pair(c[i - 1].image_id1, c[i - 1].image_id2),

@@ -63,7 +63,14 @@ TEST(VerificationTable, EvaluatesAPairSetAtTheStrongCut) {
   EXPECT_EQ(quality.num_verified, 2u);  // (1,2) and (1,3)
   EXPECT_EQ(quality.num_strong, 1u);    // (1,2) only
   EXPECT_EQ(quality.num_images_with_strong, 2u);
-  EXPECT_EQ(quality.num_cross_scene, 2u);  // (1,3) and (2,4)
+  EXPECT_EQ(quality.num_cross_scene, 2u);   // (1,3) and (2,4)
+  EXPECT_EQ(quality.num_images_grown, 2u);  // the seed pair
+  // At 15 inliers (1,3) is strong too, but image 3 has one partner in the
+  // model grown from (1,2): three images with a strong pair, two grown.
+  const PairSetQuality low =
+      EvaluatePairSet({{1, 2}, {1, 3}}, table, nullptr, 15);
+  EXPECT_EQ(low.num_images_with_strong, 3u);
+  EXPECT_EQ(low.num_images_grown, 2u);
 }
 
 TEST(VerificationTable, StrongPairsAreTheVerifiedOnesAtTheCut) {
