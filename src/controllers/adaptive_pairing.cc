@@ -550,10 +550,11 @@ std::vector<int> AdaptivePairGenerator::LaterRound() const {
                     std::to_string(options_.image_patience) +
                     " candidates without one";
     if (options_.component_patience > 0) {
-      enough_reason += ", and every strong component has spent its " +
-                       std::to_string(options_.component_patience) +
-                       " attempts at joining another or has no candidate "
-                       "leading out of it";
+      enough_reason +=
+          ", and every model the strong pairs grow has spent its " +
+          std::to_string(options_.component_patience) +
+          " attempts at joining another or has no candidate "
+          "leading out of it";
     }
   }
   if (enough && options_.max_strong_partners > 0) {

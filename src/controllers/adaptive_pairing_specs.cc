@@ -208,8 +208,8 @@ void AddAdaptiveOptions(OptionManager* manager,
   manager->AddDefaultOption(
       "GcnMatching.component_patience",
       &options->component_patience,
-      "adaptive: attempts each strong component of >= 2 images spends on "
-      "joining another before the rounds stop; 0: none");
+      "adaptive: attempts each model the strong pairs can grow (>= 3 "
+      "images) spends on joining another before the rounds stop; 0: none");
 }
 
 }  // namespace
