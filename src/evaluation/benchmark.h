@@ -39,12 +39,12 @@ struct BenchmarkOptions {
   // Mapper threads; 1 makes mapper runs repeatable (COLMAP's own advice).
   int mapper_num_threads = 1;
 
-  // Mapper models with fewer registered images are discarded: COLMAP's
-  // default, what users run (the mapper keeps its first model whatever its
-  // size and lowers the bound to 0.8 x the images on small scenes). Lower
-  // values keep poor starts: the mapper retries a discarded model's images
-  // from another initial pair.
-  int mapper_min_model_size = 10;
+  // Mapper models with fewer registered images are discarded. COLMAP
+  // 3.8's default 10 (bounded by 0.8 x the images) discards even the first
+  // model of a small scene that registers fewer; 3 keeps partial models in
+  // the tables, but also keeps poor starts on large scenes
+  // (docs/benchmarks.md): pass 10 there to map as users do.
+  int mapper_min_model_size = 3;
 
   // results.json of a benchmark that ran a merged collection's scenes
   // alone with the exhaustive method

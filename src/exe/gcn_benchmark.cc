@@ -82,8 +82,7 @@ int RunGcnBenchmark(int argc, char** argv) {
                            "1: repeatable mapper runs; -1: all cores");
   manager.AddDefaultOption("Benchmark.mapper_min_model_size",
                            &options.mapper_min_model_size,
-                           "smaller models are discarded by the mapper "
-                           "(COLMAP's default)");
+                           "smaller models are discarded by the mapper");
   manager.AddDefaultOption("Benchmark.alone_results_path",
                            &options.alone_results_path,
                            "merged collections: results.json of their scenes "
