@@ -288,8 +288,8 @@ struct AdaptiveGcnPairingOptions {
   // are the union of the GCN's and the similarity kNN's (knn, k = 100),
   // scored (1 - w) * the GCN score's percentile + w * the similarity's
   // percentile in its images' own lists (CombinePriors); 0: the GCN score
-  // alone. The GCN's scores alone stop
-  // the rounds early: they rank many real pairs low (docs/adaptive.md).
+  // alone. The GCN's scores alone stop the rounds early: they rank many
+  // real pairs low (docs/adaptive.md).
   double similarity_weight = 0.5;
   KnnPairingOptions knn;
   void Check() const;

@@ -28,9 +28,8 @@ void AdaptiveGcnPairingOptions::Check() const {
 
 namespace {
 
-// Each unordered pair's percentile in (0, 1] within its list (the higher
-// score of a duplicate kept; ties share their mean percentile), by pair id.
-std::unordered_map<image_pair_t, double> ScorePercentiles(
+// Each unordered pair's score, the higher of a duplicate kept, by pair id.
+std::unordered_map<image_pair_t, float> BestScores(
     const std::vector<PairCandidate>& candidates) {
   std::unordered_map<image_pair_t, float> best;
   for (const PairCandidate& candidate : candidates) {
@@ -40,36 +39,41 @@ std::unordered_map<image_pair_t, double> ScorePercentiles(
         candidate.score);
     if (!inserted) it->second = std::max(it->second, candidate.score);
   }
+  return best;
+}
+
+// The percentile in (0, 1] of `score` among `sorted` scores (which hold
+// it); ties share their mean percentile.
+double MidRankPercentile(const std::vector<float>& sorted, float score) {
+  const double low = static_cast<double>(
+      std::lower_bound(sorted.begin(), sorted.end(), score) - sorted.begin());
+  const double high = static_cast<double>(
+      std::upper_bound(sorted.begin(), sorted.end(), score) - sorted.begin());
+  return (low + high + 1) / (2 * static_cast<double>(sorted.size()));
+}
+
+// Each unordered pair's percentile within its list, by pair id.
+std::unordered_map<image_pair_t, double> ScorePercentiles(
+    const std::vector<PairCandidate>& candidates) {
+  const std::unordered_map<image_pair_t, float> best = BestScores(candidates);
   std::vector<float> scores;
   scores.reserve(best.size());
   for (const auto& [pair_id, score] : best) scores.push_back(score);
   std::sort(scores.begin(), scores.end());
   std::unordered_map<image_pair_t, double> percentiles;
-  const double n = static_cast<double>(scores.size());
   for (const auto& [pair_id, score] : best) {
-    const double low = static_cast<double>(
-        std::lower_bound(scores.begin(), scores.end(), score) - scores.begin());
-    const double high = static_cast<double>(
-        std::upper_bound(scores.begin(), scores.end(), score) - scores.begin());
-    percentiles.emplace(pair_id, (low + high + 1) / (2 * n));
+    percentiles.emplace(pair_id, MidRankPercentile(scores, score));
   }
   return percentiles;
 }
 
 // Each unordered pair's percentile within the better of its two images'
-// own lists (every pair of the list that includes the image, by score;
-// ties share their mean percentile), by pair id: the way kNN retrieval
-// ranks, so an image whose scores are all low still has its best pairs.
+// own lists (the pairs of the list that include the image), by pair id:
+// the way kNN retrieval ranks, so an image whose scores are all low still
+// has its best pairs.
 std::unordered_map<image_pair_t, double> ImageRankPercentiles(
     const std::vector<PairCandidate>& candidates) {
-  std::unordered_map<image_pair_t, float> best;
-  for (const PairCandidate& candidate : candidates) {
-    if (candidate.image_id1 == candidate.image_id2) continue;
-    const auto [it, inserted] = best.emplace(
-        ImagePairToPairId(candidate.image_id1, candidate.image_id2),
-        candidate.score);
-    if (!inserted) it->second = std::max(it->second, candidate.score);
-  }
+  const std::unordered_map<image_pair_t, float> best = BestScores(candidates);
   std::unordered_map<image_t, std::vector<float>> per_image;
   for (const auto& [pair_id, score] : best) {
     const ImagePair pair = PairIdToImagePair(pair_id);
@@ -79,20 +83,13 @@ std::unordered_map<image_pair_t, double> ImageRankPercentiles(
   for (auto& [image_id, scores] : per_image) {
     std::sort(scores.begin(), scores.end());
   }
-  const auto percentile = [&](image_t image_id, float score) {
-    const std::vector<float>& scores = per_image.at(image_id);
-    const double low = static_cast<double>(
-        std::lower_bound(scores.begin(), scores.end(), score) - scores.begin());
-    const double high = static_cast<double>(
-        std::upper_bound(scores.begin(), scores.end(), score) - scores.begin());
-    return (low + high + 1) / (2 * static_cast<double>(scores.size()));
-  };
   std::unordered_map<image_pair_t, double> percentiles;
   for (const auto& [pair_id, score] : best) {
     const ImagePair pair = PairIdToImagePair(pair_id);
-    percentiles.emplace(pair_id,
-                        std::max(percentile(pair.first, score),
-                                 percentile(pair.second, score)));
+    percentiles.emplace(
+        pair_id,
+        std::max(MidRankPercentile(per_image.at(pair.first), score),
+                 MidRankPercentile(per_image.at(pair.second), score)));
   }
   return percentiles;
 }
