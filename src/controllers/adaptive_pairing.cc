@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <unordered_set>
 
 #include "util/error.h"
 #include "util/logging.h"
@@ -56,6 +57,7 @@ AdaptivePairGenerator::AdaptivePairGenerator(
   // Unordered, deduplicated (higher score kept), in row-key order.
   std::vector<std::pair<uint64_t, float>> keyed;
   keyed.reserve(candidates.size());
+  std::unordered_set<uint64_t> consecutive;
   for (const PairCandidate& candidate : candidates) {
     const auto it1 = rows_.find(candidate.image_id1);
     const auto it2 = rows_.find(candidate.image_id2);
@@ -69,6 +71,7 @@ AdaptivePairGenerator::AdaptivePairGenerator(
     }
     if (it1->second == it2->second) continue;
     keyed.emplace_back(PairKey(it1->second, it2->second), candidate.score);
+    if (candidate.consecutive) consecutive.insert(keyed.back().first);
   }
   std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
     return a.first != b.first ? a.first < b.first : a.second > b.second;
@@ -79,6 +82,7 @@ AdaptivePairGenerator::AdaptivePairGenerator(
     candidate.row1 = static_cast<int>(keyed[i].first >> 32);
     candidate.row2 = static_cast<int>(keyed[i].first & 0xffffffffu);
     candidate.score = keyed[i].second;
+    candidate.consecutive = consecutive.count(keyed[i].first) > 0;
     candidate_index_.emplace(keyed[i].first,
                              static_cast<int>(candidates_.size()));
     candidates_.push_back(candidate);
@@ -110,6 +114,7 @@ void AdaptivePairGenerator::Reset() {
   strong_cut_ = options_.min_strong_inliers;
   calibration_ = IsotonicCalibration();
   support_offsets_.assign(kSupportClasses, 0.0);
+  consecutive_offset_ = 0;
   retries_.assign(image_ids_.size(), 0);
   failures_.assign(image_ids_.size(), 0);
   best_inliers_.assign(image_ids_.size(), 0);
@@ -192,35 +197,6 @@ bool AdaptivePairGenerator::IsStrong(const Candidate& candidate) const {
                             options_.relative_strength);
 }
 
-int AdaptivePairGenerator::CommonStrongNeighbours(int c) const {
-  const std::vector<int>& a = strong_neighbours_[candidates_[c].row1];
-  const std::vector<int>& b = strong_neighbours_[candidates_[c].row2];
-  int common = 0;
-  size_t i = 0;
-  size_t j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (a[i] == b[j]) {
-      ++common;
-      ++i;
-      ++j;
-    } else if (a[i] < b[j]) {
-      ++i;
-    } else {
-      ++j;
-    }
-  }
-  return common;
-}
-
-int AdaptivePairGenerator::SupportClass(int c) const {
-  const int common = CommonStrongNeighbours(c);
-  if (common == 0) return 0;
-  if (common == 1) return 1;
-  if (common <= 3) return 2;
-  if (common <= 7) return 3;
-  return 4;
-}
-
 void AdaptivePairGenerator::Observe(
     const std::vector<PairVerification>& verifications) {
   prepared_ = false;
@@ -279,6 +255,8 @@ void AdaptivePairGenerator::LogRound(const AdaptiveRound& round) const {
     std::snprintf(text, sizeof(text), "%+.1f", offset);
     offsets += (offsets.empty() ? "" : "/") + std::string(text);
   }
+  char consecutive[16];
+  std::snprintf(consecutive, sizeof(consecutive), "%+.1f", consecutive_offset_);
   std::string connected;
   if (options_.stop_rule == AdaptiveStopRule::kEnough) {
     connected = "; " + std::to_string(round.num_connected) + " of " +
@@ -301,7 +279,8 @@ void AdaptivePairGenerator::LogRound(const AdaptiveRound& round) const {
             << round.num_strong << " strong (cut " << round.strong_cut
             << " inliers); " << round.total_attempted << " attempted, "
             << round.total_strong << " strong in all; support offsets "
-            << offsets << connected << "; " << seconds << " s";
+            << offsets << ", consecutive " << consecutive << connected << "; "
+            << seconds << " s";
 }
 
 void AdaptivePairGenerator::Connectivity(size_t* num_connected,
@@ -382,11 +361,32 @@ void AdaptivePairGenerator::Refit() {
             ? FitLogOddsOffset(logits[k], num_strong[k])
             : 0;
   }
+  // Consecutive pairs, on top of their support classes' offsets: whether
+  // the name order is the capture order shows in how often they verify.
+  std::vector<double> consecutive_logits;
+  double consecutive_strong = 0;
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (candidate.state != Candidate::State::kObserved ||
+        !candidate.consecutive) {
+      continue;
+    }
+    consecutive_logits.push_back(Logit(calibration_.Predict(candidate.score)) +
+                                 support_offsets_[SupportClass(c)]);
+    consecutive_strong += IsStrong(candidate) ? 1 : 0;
+  }
+  consecutive_offset_ =
+      consecutive_logits.size() >=
+              static_cast<size_t>(options_.min_propagation_samples)
+          ? FitLogOddsOffset(consecutive_logits, consecutive_strong)
+          : 0;
 }
 
 double AdaptivePairGenerator::Probability(int c) const {
-  return Sigmoid(Logit(calibration_.Predict(candidates_[c].score)) +
-                 support_offsets_[SupportClass(c)]);
+  const Candidate& candidate = candidates_[c];
+  return Sigmoid(Logit(calibration_.Predict(candidate.score)) +
+                 support_offsets_[SupportClass(c)] +
+                 (candidate.consecutive ? consecutive_offset_ : 0.0));
 }
 
 void AdaptivePairGenerator::PrepareNext() const {

@@ -133,6 +133,11 @@ struct PairCandidate {
   image_t image_id1 = kInvalidImageId;
   image_t image_id2 = kInvalidImageId;
   float score = 0.f;
+  // Next to each other in name order (consecutive photos of a capture).
+  // The loop learns from its own verifications whether that order means
+  // overlap (a walk, a video) or nothing (web photos): such pairs get a
+  // log-odds offset of their own once enough of them were matched.
+  bool consecutive = false;
 };
 
 // One round as logged.
@@ -210,6 +215,7 @@ class AdaptivePairGenerator : public PairGenerator {
     bool verified = false;
     size_t num_inliers = 0;
     bool bridge = false;  // yielded by a bridging round
+    bool consecutive = false;
   };
 
   void PrepareNext() const;  // fills next_ (logical constness: a cache)
@@ -260,6 +266,8 @@ class AdaptivePairGenerator : public PairGenerator {
   // Log-odds offset per support class (0, 1, 2-3, 4-7, >= 8 common strong
   // neighbours).
   std::vector<double> support_offsets_;
+  // Log-odds offset of consecutive pairs, over the support offset.
+  double consecutive_offset_ = 0;
   std::vector<int> retries_;          // connectivity attempts per row
   std::vector<int> failures_;         // kEnough: attempts not strong, per row
   std::vector<size_t> best_inliers_;  // best verified pair per row
@@ -306,6 +314,11 @@ struct AdaptiveGcnPairingOptions {
 std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
                                          const std::vector<PairCandidate>& b,
                                          double weight_b);
+
+// Marks the candidates whose images are next to each other in name order
+// and adds those missing with the lowest prior score (0).
+void AddConsecutivePairs(const Database& database,
+                         std::vector<PairCandidate>* candidates);
 
 // The candidates of the GCN model (threshold 0: every scored 1-hop pair).
 std::vector<PairCandidate> GcnModelCandidates(

@@ -1,6 +1,7 @@
 // The blocks AdaptivePairGenerator adds beyond its ranked and probe rounds:
 // the per-image guarantee and the bridging between strong components
-// (kEnough), the connectivity attempts (kRecall).
+// (kEnough), the connectivity attempts (kRecall); and the strong paths a
+// candidate closes, which propagation classes it by.
 #include <algorithm>
 
 #include "controllers/adaptive_pairing.h"
@@ -15,6 +16,35 @@ constexpr int kMinRegistrationViews = 2;
 constexpr int kMinClusterImages = 3;
 
 }  // namespace
+
+int AdaptivePairGenerator::CommonStrongNeighbours(int c) const {
+  const std::vector<int>& a = strong_neighbours_[candidates_[c].row1];
+  const std::vector<int>& b = strong_neighbours_[candidates_[c].row2];
+  int common = 0;
+  size_t i = 0;
+  size_t j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (a[i] == b[j]) {
+      ++common;
+      ++i;
+      ++j;
+    } else if (a[i] < b[j]) {
+      ++i;
+    } else {
+      ++j;
+    }
+  }
+  return common;
+}
+
+int AdaptivePairGenerator::SupportClass(int c) const {
+  const int common = CommonStrongNeighbours(c);
+  if (common == 0) return 0;
+  if (common == 1) return 1;
+  if (common <= 3) return 2;
+  if (common <= 7) return 3;
+  return 4;
+}
 
 std::vector<int> AdaptivePairGenerator::GuaranteeBlock(
     const std::vector<int>& untried,

@@ -2,8 +2,10 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "controllers/adaptive_pairing.h"
+#include "pairing/sequential_pairing.h"
 #include "retrieval/global_descriptors.h"
 #include "retrieval/knn.h"
 #include "util/option_check.h"
@@ -119,6 +121,32 @@ std::vector<PairCandidate> CombinePriors(const std::vector<PairCandidate>& a,
     combined.push_back({pair.first, pair.second, static_cast<float>(score)});
   }
   return combined;
+}
+
+void AddConsecutivePairs(const Database& database,
+                         std::vector<PairCandidate>* candidates) {
+  SequentialMatchingOptions sequential;
+  sequential.overlap = 1;
+  SequentialPairGenerator generator(sequential, database);
+  std::unordered_set<image_pair_t> consecutive;
+  while (!generator.HasFinished()) {
+    for (const ImagePair& pair : generator.Next()) {
+      consecutive.insert(ImagePairToPairId(pair.first, pair.second));
+    }
+  }
+  for (PairCandidate& candidate : *candidates) {
+    if (consecutive.erase(
+            ImagePairToPairId(candidate.image_id1, candidate.image_id2)) > 0) {
+      candidate.consecutive = true;
+    }
+  }
+  // Sorted, so that the added candidates do not depend on hashing.
+  std::vector<image_pair_t> missing(consecutive.begin(), consecutive.end());
+  std::sort(missing.begin(), missing.end());
+  for (const image_pair_t pair_id : missing) {
+    const ImagePair pair = PairIdToImagePair(pair_id);
+    candidates->push_back({pair.first, pair.second, 0.f, true});
+  }
 }
 
 std::vector<PairCandidate> GcnModelCandidates(
@@ -242,6 +270,7 @@ PairGeneratorSpec<AdaptiveGcnPairingOptions> AdaptiveSpec(
           SimilarityCandidates(options.knn, context.database, &knn_image_ids),
           options.similarity_weight);
     }
+    AddConsecutivePairs(context.database, &candidates);
     AdaptivePairingOptions adaptive = options.adaptive;
     adaptive.stop_rule = stop_rule;
     return std::make_unique<AdaptivePairGenerator>(

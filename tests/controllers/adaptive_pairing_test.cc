@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "adaptive_test_scenes.h"
+#include "scene/colmap_scene_fixture.h"
 #include "scene/database.h"
 #include "test_utils.h"
+#include "util/file.h"
 #include "util/logging.h"
 
 namespace colmap_gcn {
@@ -287,6 +289,95 @@ TEST(AdaptivePairGenerator, SameObservationsGiveTheSameBlocks) {
   AdaptivePairGenerator seeded(options, scene.image_ids, scene.candidates);
   seeded.Reset();
   EXPECT_NE(seeded.Next(), blocks.front());
+}
+
+// Two blocks of a photo walk, 1-30 and 31-60: photos up to 3 apart
+// overlap, but the prior only knows each block, so the four junction pairs
+// (28-31, 29-31, 29-32, 30-31, 30-32, 30-33) score as low as the 894
+// pairs across that do not overlap. The walk's consecutive pairs verify
+// more often than their scores predict; flagged as consecutive, the loop
+// learns that and tries 30-31, which the prior alone never reaches.
+struct TwoBlockWalk {
+  TwoBlockWalk() {
+    for (image_t id = 1; id <= 60; ++id) image_ids.push_back(id);
+    for (image_t a = 1; a <= 60; ++a) {
+      for (image_t b = a + 1; b <= 60; ++b) {
+        const bool same = (a <= 30) == (b <= 30);
+        const float wobble = 0.01f * static_cast<float>((a * 7 + b * 3) % 5);
+        const float score =
+            same ? 1.0f / static_cast<float>(b - a) - wobble : 0.05f + wobble;
+        candidates.push_back({a, b, score, b == a + 1});
+      }
+    }
+  }
+  static bool Overlap(const ImagePair& pair) {
+    return std::abs(static_cast<int>(pair.first) -
+                    static_cast<int>(pair.second)) <= 3;
+  }
+  static bool Junction(const ImagePair& pair) {
+    return Overlap(pair) && (std::min(pair.first, pair.second) <= 30) !=
+                                (std::max(pair.first, pair.second) <= 30);
+  }
+  static PairVerification Verify(const ImagePair& pair) {
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    if (Overlap(pair)) {
+      verification.config = 2;
+      verification.num_inliers = 600 / std::abs(static_cast<int>(pair.first) -
+                                                static_cast<int>(pair.second));
+    }
+    return verification;
+  }
+  std::vector<image_t> image_ids;
+  std::vector<PairCandidate> candidates;
+};
+
+TEST(AdaptivePairGenerator, ConsecutivePairsLearnTheirOwnOffset) {
+  const TwoBlockWalk walk;
+  const auto junction_pairs = [&](std::vector<PairCandidate> candidates) {
+    AdaptivePairGenerator generator(
+        AdaptivePairingOptions(), walk.image_ids, candidates);
+    const std::vector<ImagePair> pairs =
+        Flatten(RunToTheEnd(&generator, [&](const ImagePair& pair) {
+          return TwoBlockWalk::Verify(pair);
+        }));
+    return std::count_if(pairs.begin(), pairs.end(), TwoBlockWalk::Junction);
+  };
+  std::vector<PairCandidate> unflagged = walk.candidates;
+  for (PairCandidate& candidate : unflagged) candidate.consecutive = false;
+  EXPECT_EQ(junction_pairs(unflagged), 0);
+  EXPECT_GE(junction_pairs(walk.candidates), 1);
+}
+
+TEST(AddConsecutivePairs, MarksNameNeighboursAndAddsTheMissing) {
+  const TemporaryDirectory dir("colmap_gcn_consecutive");
+  const std::string path = JoinPaths(dir.Path(), "database.db");
+  // Ids out of name order: the name order is the capture order.
+  test::ExecuteSql(path,
+                   std::string(test::kColmap38Schema) +
+                       "INSERT INTO cameras VALUES (1, 0, 100, 80, NULL, 0);"
+                       "INSERT INTO images (image_id, name, camera_id) VALUES "
+                       "(1, 'c.jpg', 1), (2, 'a.jpg', 1), (3, 'b.jpg', 1), "
+                       "(4, 'd.jpg', 1);");
+  const Database database(path);
+  // a-b (2-3) listed, b-c (3-1) and c-d (1-4) missing, 2-4 not consecutive.
+  std::vector<PairCandidate> candidates = {{3, 2, 0.7f}, {2, 4, 0.9f}};
+  AddConsecutivePairs(database, &candidates);
+  ASSERT_EQ(candidates.size(), 4u);
+  EXPECT_TRUE(candidates[0].consecutive);
+  EXPECT_FLOAT_EQ(candidates[0].score, 0.7f);
+  EXPECT_FALSE(candidates[1].consecutive);
+  std::set<image_pair_t> added;
+  for (size_t i = 2; i < candidates.size(); ++i) {
+    EXPECT_TRUE(candidates[i].consecutive);
+    EXPECT_EQ(candidates[i].score, 0.f);
+    added.insert(
+        ImagePairToPairId(candidates[i].image_id1, candidates[i].image_id2));
+  }
+  EXPECT_EQ(added,
+            (std::set<image_pair_t>{ImagePairToPairId(1, 3),
+                                    ImagePairToPairId(1, 4)}));
 }
 
 TEST(AdaptivePairGenerator, WithoutResultsOnlyTheFirstRound) {
