@@ -96,7 +96,7 @@ void GcnMatchingOptions::Matching::Check() const {
 }
 
 GcnMatchingOptions::GcnMatchingOptions()
-    : pairing(PairGenerators().Names().front()),
+    : pairing(kDefaultPairing),
       generators(PairGenerators().DefaultOptions()) {}
 
 void GcnMatchingOptions::Check() const {

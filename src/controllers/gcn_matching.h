@@ -19,8 +19,8 @@ struct GcnMatchingOptions {
   // Every registered generator's options at their defaults.
   GcnMatchingOptions();
 
-  // Pair generator, a name in PairGenerators(); default: the first
-  // registered (gcn).
+  // Pair generator, a name in PairGenerators(); default: kDefaultPairing
+  // (adaptive).
   std::string pairing;
 
   // Each generator's own options, e.g. generators.Get<KnnPairingOptions>(

@@ -13,7 +13,7 @@ namespace colmap_gcn {
 const PairGeneratorRegistry& PairGenerators() {
   static const PairGeneratorRegistry registry = [] {
     PairGeneratorRegistry generators;
-    // One line per generator; the first is the default pairing.
+    // One line per generator; kDefaultPairing is among them.
     generators.Register(GcnModelPairGeneratorSpec());
     generators.Register(ExhaustivePairGeneratorSpec());
     generators.Register(ImportedPairGeneratorSpec());

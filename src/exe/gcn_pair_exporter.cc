@@ -10,6 +10,9 @@ namespace colmap_gcn {
 int RunGcnPairExporter(int argc, char** argv) {
   std::string database_path;
   GcnMatchingOptions options;
+  // The exporter matches nothing, so its default is the single-shot GCN
+  // (the default adaptive pairing needs verifications).
+  options.pairing = "gcn";
   PairExportOptions export_options;
   OptionManager manager(
       "gcn_pair_exporter",

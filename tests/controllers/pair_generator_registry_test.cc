@@ -35,14 +35,16 @@ class PairGeneratorRegistryTest : public testing::Test {
   std::string database_path_;
 };
 
-TEST(PairGeneratorRegistry, NamesTheBuiltInGeneratorsGcnFirst) {
+TEST(PairGeneratorRegistry, NamesTheBuiltInGeneratorsAndTheDefault) {
   const std::vector<std::string> names = PairGenerators().Names();
   ASSERT_GE(names.size(), 5u);
   EXPECT_EQ(names.front(), "gcn");
+  EXPECT_TRUE(PairGenerators().Has(kDefaultPairing));
+  EXPECT_TRUE(PairGenerators().UsesVerification(kDefaultPairing));
   for (const char* name : {"exhaustive", "imported", "knn", "vocab_tree"}) {
     EXPECT_TRUE(PairGenerators().Has(name)) << name;
   }
-  EXPECT_EQ(GcnMatchingOptions().pairing, "gcn");
+  EXPECT_EQ(GcnMatchingOptions().pairing, "adaptive");
 }
 
 TEST(PairGeneratorRegistry, UnknownNameIsOneLineListingTheKnownNames) {

@@ -329,14 +329,15 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
 
   const std::string pairs_path = JoinPaths(dir_->Path(), "gcn_pairs.txt");
   std::string output;
-  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
-                       " --GcnMatching.model_path " + model_path +
-                       " --GcnMatching.k1 6 --GcnMatching.k2 3"
-                       " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
-                       " --GcnMatching.pairs_path " +
-                       pairs_path,
-                   &output),
-            0)
+  ASSERT_EQ(
+      Colmap("gcn_matcher --GcnMatching.pairing gcn --database_path " +
+                 database_path + " --GcnMatching.model_path " + model_path +
+                 " --GcnMatching.k1 6 --GcnMatching.k2 3"
+                 " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
+                 " --GcnMatching.pairs_path " +
+                 pairs_path,
+             &output),
+      0)
       << output;
   const auto pairs = ReadPairsFile(pairs_path);
   // At most k1 candidates per image, and every image keeps its best three.
@@ -355,29 +356,31 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
 
   // Same input, other thread count: the same pairs.
   const std::string pairs_path2 = JoinPaths(dir_->Path(), "gcn_pairs2.txt");
-  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
-                       " --GcnMatching.model_path " + model_path +
-                       " --GcnMatching.k1 6 --GcnMatching.k2 3"
-                       " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
-                       " --GcnMatching.num_threads 1"
-                       " --GcnMatching.pairs_path " +
-                       pairs_path2,
-                   &output),
-            0)
+  ASSERT_EQ(
+      Colmap("gcn_matcher --GcnMatching.pairing gcn --database_path " +
+                 database_path + " --GcnMatching.model_path " + model_path +
+                 " --GcnMatching.k1 6 --GcnMatching.k2 3"
+                 " --GcnMatching.u 3 --GcnMatching.min_pairs_per_image 3"
+                 " --GcnMatching.num_threads 1"
+                 " --GcnMatching.pairs_path " +
+                 pairs_path2,
+             &output),
+      0)
       << output;
   EXPECT_EQ(ReadPairsFile(pairs_path2), pairs);
 
   // Threshold 0 keeps every candidate: the user is warned that the GCN
   // chose nothing beyond the k1 nearest neighbours.
   const std::string pairs_path3 = JoinPaths(dir_->Path(), "gcn_pairs3.txt");
-  ASSERT_EQ(Colmap("gcn_matcher --database_path " + database_path +
-                       " --GcnMatching.model_path " + model_path +
-                       " --GcnMatching.k1 6 --GcnMatching.k2 3"
-                       " --GcnMatching.u 3 --GcnMatching.threshold 0"
-                       " --GcnMatching.pairs_path " +
-                       pairs_path3,
-                   &output),
-            0)
+  ASSERT_EQ(
+      Colmap("gcn_matcher --GcnMatching.pairing gcn --database_path " +
+                 database_path + " --GcnMatching.model_path " + model_path +
+                 " --GcnMatching.k1 6 --GcnMatching.k2 3"
+                 " --GcnMatching.u 3 --GcnMatching.threshold 0"
+                 " --GcnMatching.pairs_path " +
+                 pairs_path3,
+             &output),
+      0)
       << output;
   EXPECT_NE(output.find("] all "), std::string::npos) << output;
   EXPECT_NE(output.find("candidate pairs scored above --GcnMatching.threshold "
@@ -391,10 +394,11 @@ TEST_F(GcnMatcherEndToEnd, GcnPairingWithAModelFile) {
   // A model file that is not one: one-line error, database untouched.
   const std::string before = ReadTextFile(database_path);
   WriteFileAtomically(model_path, "not a model");
-  EXPECT_EQ(Colmap("gcn_matcher --database_path " + database_path +
-                       " --GcnMatching.model_path " + model_path,
-                   &output),
-            1);
+  EXPECT_EQ(
+      Colmap("gcn_matcher --GcnMatching.pairing gcn --database_path " +
+                 database_path + " --GcnMatching.model_path " + model_path,
+             &output),
+      1);
   EXPECT_EQ(StringSplit(StringTrim(output), "\n").size(), 1u) << output;
   EXPECT_EQ(ReadTextFile(database_path), before);
 }
