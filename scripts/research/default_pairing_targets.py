@@ -3,9 +3,13 @@
 # pairing against its targets") checked on a gcn_benchmark results.json,
 # e.g. the output of scripts/research/benchmark_all.sh:
 #
-#   scripts/research/default_pairing_targets.py benchmark-out/results.json [METHOD...]
+#   scripts/research/default_pairing_targets.py benchmark-out/results.json \
+#       [--rerun OTHER/results.json ...] [METHOD...]
 #
-# METHODs default to gcn and adaptive. Per scene with labels (>= 20 images,
+# METHODs default to gcn and adaptive. --rerun takes each method a later
+# gcn_benchmark run measured on a scene (e.g. one method re-run on the same
+# cached features and exhaustive run) in place of the first file's, so the
+# fixed-k baselines stay those of the first run. Per scene with labels (>= 20 images,
 # or of the synthetic ordinary family) and method, as markdown:
 #   SfM    registered >= exhaustive's, models <= exhaustive's, accurate
 #          cameras >= exhaustive's minus one (or >= the oracle's);
@@ -35,7 +39,14 @@ def main():
     if len(sys.argv) < 2:
         sys.exit("usage: default_pairing_targets.py RESULTS.json [METHOD...]")
     results = json.load(open(sys.argv[1]))
-    ours = sys.argv[2:] or ["gcn", "adaptive"]
+    args = sys.argv[2:]
+    while len(args) >= 2 and args[0] == "--rerun":
+        rerun = {scene["name"]: scene for scene in json.load(open(args[1]))["scenes"]}
+        for scene in results["scenes"]:
+            later = {m["method"]: m for m in rerun.get(scene["name"], {}).get("methods", [])}
+            scene["methods"] = [later.get(m["method"], m) for m in scene["methods"]]
+        args = args[2:]
+    ours = args or ["gcn", "adaptive"]
     rows = []
     met = {name: {"SfM": 0, "TAM": 0, "F": 0, "scenes": 0} for name in ours}
     mean_f = {name: [] for name in ours}
