@@ -354,12 +354,16 @@ void AdaptivePairGenerator::Refit() {
     logits[support].push_back(Logit(calibration_.Predict(candidate.score)));
     num_strong[support] += IsStrong(candidate) ? 1 : 0;
   }
+  // A class with fewer than min_propagation_samples matched pairs: none.
+  const auto fitted_offset = [&](const std::vector<double>& class_logits,
+                                 double class_strong) {
+    return class_logits.size() >=
+                   static_cast<size_t>(options_.min_propagation_samples)
+               ? FitLogOddsOffset(class_logits, class_strong)
+               : 0.0;
+  };
   for (int k = 0; k < kSupportClasses; ++k) {
-    support_offsets_[k] =
-        logits[k].size() >=
-                static_cast<size_t>(options_.min_propagation_samples)
-            ? FitLogOddsOffset(logits[k], num_strong[k])
-            : 0;
+    support_offsets_[k] = fitted_offset(logits[k], num_strong[k]);
   }
   // Consecutive pairs, on top of their support classes' offsets: whether
   // the name order is the capture order shows in how often they verify.
@@ -375,11 +379,7 @@ void AdaptivePairGenerator::Refit() {
                                  support_offsets_[SupportClass(c)]);
     consecutive_strong += IsStrong(candidate) ? 1 : 0;
   }
-  consecutive_offset_ =
-      consecutive_logits.size() >=
-              static_cast<size_t>(options_.min_propagation_samples)
-          ? FitLogOddsOffset(consecutive_logits, consecutive_strong)
-          : 0;
+  consecutive_offset_ = fitted_offset(consecutive_logits, consecutive_strong);
 }
 
 double AdaptivePairGenerator::Probability(int c) const {

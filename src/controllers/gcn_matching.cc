@@ -96,8 +96,7 @@ void GcnMatchingOptions::Matching::Check() const {
 }
 
 GcnMatchingOptions::GcnMatchingOptions()
-    : pairing(kDefaultPairing),
-      generators(PairGenerators().DefaultOptions()) {}
+    : pairing(kDefaultPairing), generators(PairGenerators().DefaultOptions()) {}
 
 void GcnMatchingOptions::Check() const {
   const std::vector<std::string> names = PairGenerators().Names();
