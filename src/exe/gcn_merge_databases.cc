@@ -19,10 +19,12 @@ int RunGcnMergeDatabases(int argc, char** argv) {
   std::string database_paths;
   std::string name_prefixes;
   std::string output_path;
+  bool keep_matches = false;
   OptionManager manager(
       "gcn_merge_databases",
       "Merges COLMAP 3.8 databases into one (cameras, images, keypoints and "
-      "descriptors; no matches), image names prefixed so they stay unique.");
+      "descriptors; matches only with --keep_matches 1), image names "
+      "prefixed so they stay unique.");
   manager.AddRequiredOption(
       "database_paths", &database_paths, "comma-separated databases");
   manager.AddRequiredOption(
@@ -31,6 +33,12 @@ int RunGcnMergeDatabases(int argc, char** argv) {
                            &name_prefixes,
                            "comma-separated image name prefix per database; "
                            "empty: <index>/");
+  manager.AddDefaultOption(
+      "keep_matches",
+      &keep_matches,
+      "keep each database's matches and two_view_geometries (pairs across "
+      "databases stay unmatched), e.g. to replay a pairing with "
+      "gcn_adaptive_simulator on scenes matched alone");
   if (!manager.Parse(argc, argv)) {
     return 0;
   }
@@ -46,7 +54,7 @@ int RunGcnMergeDatabases(int argc, char** argv) {
   // Written beside the output and renamed to it when complete.
   const std::string partial = output_path + ".gcn-partial";
   std::filesystem::remove(partial);
-  MergeDatabases(paths, partial, SplitCommaList(name_prefixes));
+  MergeDatabases(paths, partial, SplitCommaList(name_prefixes), keep_matches);
   std::filesystem::rename(partial, output_path);
   std::cout << Database(output_path).ReadAllImages().size() << " images from "
             << paths.size() << " database(s) in " << output_path << "\n";

@@ -241,6 +241,19 @@ void Exec(sqlite3* db, const std::string& sql) {
   }
 }
 
+// SQL appending src.<table>'s rows to main.<table> under the merged pair
+// ids. Both image ids move by the same offset o, so pair_id = id1 * K + id2
+// (K = 2^31 - 1) moves by o * (K + 1); the blobs index keypoints, which
+// keep their order.
+std::string ShiftedPairRows(const std::string& table) {
+  return "CREATE TEMP TABLE shifted AS SELECT * FROM src." + table +
+         ";"
+         "UPDATE shifted SET pair_id = pair_id + (SELECT img FROM offsets)"
+         " * 2147483648;"
+         "INSERT INTO main." +
+         table + " SELECT * FROM shifted; DROP TABLE shifted;";
+}
+
 std::string SqlQuote(const std::string& str) {
   std::string quoted = "'";
   for (const char c : str) {
@@ -254,7 +267,8 @@ std::string SqlQuote(const std::string& str) {
 
 void MergeDatabases(const std::vector<std::string>& database_paths,
                     const std::string& merged_path,
-                    const std::vector<std::string>& name_prefixes) {
+                    const std::vector<std::string>& name_prefixes,
+                    bool keep_matches) {
   if (database_paths.empty()) ThrowError("no database to merge");
   if (!name_prefixes.empty() && name_prefixes.size() != database_paths.size()) {
     ThrowError("merging ",
@@ -286,10 +300,10 @@ void MergeDatabases(const std::vector<std::string>& database_paths,
   }
   try {
     Exec(db, "PRAGMA journal_mode=DELETE;");
-    Exec(db,
-         "DELETE FROM matches; DELETE FROM two_view_geometries;"
-         "UPDATE images SET name = " +
-             SqlQuote(prefixes[0]) + " || name;");
+    if (!keep_matches) {
+      Exec(db, "DELETE FROM matches; DELETE FROM two_view_geometries;");
+    }
+    Exec(db, "UPDATE images SET name = " + SqlQuote(prefixes[0]) + " || name;");
     for (size_t i = 1; i < database_paths.size(); ++i) {
       Exec(db, "ATTACH DATABASE " + SqlQuote(database_paths[i]) + " AS src;");
       Exec(db,
@@ -309,7 +323,10 @@ void MergeDatabases(const std::vector<std::string>& database_paths,
                "INSERT INTO main.keypoints SELECT image_id + (SELECT img FROM"
                " offsets), rows, cols, data FROM src.keypoints;"
                "INSERT INTO main.descriptors SELECT image_id + (SELECT img"
-               " FROM offsets), rows, cols, data FROM src.descriptors;"
+               " FROM offsets), rows, cols, data FROM src.descriptors;" +
+               (keep_matches ? ShiftedPairRows("matches") +
+                                   ShiftedPairRows("two_view_geometries")
+                             : std::string()) +
                "DROP TABLE offsets;"
                "COMMIT;");
       Exec(db, "DETACH DATABASE src;");

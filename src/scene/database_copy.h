@@ -60,12 +60,16 @@ std::string CheckDatabaseIntegrity(const std::string& path);
 void SyncFile(const std::string& path);
 
 // One COLMAP 3.8 database at merged_path holding all cameras, images (with
-// their pose priors), keypoints and descriptors of the inputs (matches
-// dropped), ids offset past the previous inputs'; image names get the
-// prefix name_prefixes[i] (empty: "<input index>/") so they stay unique.
-// Throws Error on failure.
+// their pose priors), keypoints and descriptors of the inputs, ids offset
+// past the previous inputs'; image names get the prefix name_prefixes[i]
+// (empty: "<input index>/") so they stay unique. Matches and
+// two_view_geometries are dropped, or with keep_matches kept under the new
+// pair ids: each input's own pairs then look matched and every pair across
+// inputs unmatched (a collection of scenes matched alone, for replaying a
+// pairing on it without matching it). Throws Error on failure.
 void MergeDatabases(const std::vector<std::string>& database_paths,
                     const std::string& merged_path,
-                    const std::vector<std::string>& name_prefixes = {});
+                    const std::vector<std::string>& name_prefixes = {},
+                    bool keep_matches = false);
 
 }  // namespace colmap_gcn

@@ -499,5 +499,40 @@ TEST(MergeDatabases, OffsetsIdsPrefixesNamesKeepsPriors) {
       "merging 2 databases needs as many name prefixes (got 1)");
 }
 
+// --keep_matches: each input's pairs under the merged ids, none across.
+TEST(MergeDatabases, KeepsEachInputsMatchesUnderTheMergedPairIds) {
+  const TemporaryDirectory dir("colmap_gcn_merge_matches");
+  const std::string a = JoinPaths(dir.Path(), "a.db");
+  const std::string b = JoinPaths(dir.Path(), "b.db");
+  CreateDatabase(a, 2);
+  CreateDatabase(b, 3);
+  ExecuteSql(a, kTwoGeometries);  // (1, 2) and (1, 3)
+  ExecuteSql(b,
+             "INSERT INTO two_view_geometries (pair_id, rows, cols, config) "
+             "VALUES (4294967297, 5, 2, 2);"  // (2, 3)
+             "INSERT INTO matches (pair_id, rows, cols) "
+             "VALUES (4294967297, 7, 2);");
+  const std::string merged = JoinPaths(dir.Path(), "merged.db");
+  MergeDatabases({a, b}, merged, {"a__", "b__"}, /*keep_matches=*/true);
+  EXPECT_EQ(NumGeometries(merged), 3);
+  // b's images 2 and 3 are 4 and 5 in the merge: pair 4 * (2^31 - 1) + 5.
+  EXPECT_EQ(QuerySqlInt(merged,
+                        "SELECT rows FROM two_view_geometries WHERE pair_id "
+                        "= 8589934593;"),
+            5);
+  EXPECT_EQ(QuerySqlInt(merged,
+                        "SELECT rows FROM matches WHERE pair_id = "
+                        "8589934593;"),
+            7);
+  EXPECT_EQ(QuerySqlInt(merged,
+                        "SELECT COUNT(*) FROM two_view_geometries WHERE "
+                        "pair_id = 2147483649;"),
+            1);
+  EXPECT_EQ(QuerySqlInt(merged,
+                        "SELECT image_id FROM images WHERE name = "
+                        "'b__img2.jpg';"),
+            4);
+}
+
 }  // namespace
 }  // namespace colmap_gcn
