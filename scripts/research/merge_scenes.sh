@@ -13,6 +13,10 @@
 #                       i.e. sharing nothing — true only if the scenes do;
 #   images/             links to $SHARED/<scene>/images/* (default
 #                       ../shared/datasets), for colmap mapper --image_path.
+# With MATCHED=1, base.db is merged from each scene's exhaustive run
+# (<scene>/exhaustive/database.db) with its matches kept: every pair within
+# a scene matched, every pair across scenes unmatched, for replaying a
+# pairing on the collection with colmap gcn_adaptive_simulator.
 set -euo pipefail
 if [ "$#" -lt 4 ]; then
   echo "usage: $0 OUT BENCHMARK_DIR SCENE SCENE..." >&2
@@ -26,11 +30,17 @@ if [ -e "$OUT" ]; then
   echo "merge_scenes: $OUT exists" >&2
   exit 1
 fi
+SOURCE_DB=base.db
+KEEP_MATCHES=0
+if [ "${MATCHED:-0}" = 1 ]; then
+  SOURCE_DB=exhaustive/database.db
+  KEEP_MATCHES=1
+fi
 KINDS=""
 for scene in "$@"; do
   labels="$BENCH/$scene/labels/labels.csv"
-  if [ ! -f "$BENCH/$scene/base.db" ] || [ ! -f "$labels" ]; then
-    echo "merge_scenes: $BENCH/$scene has no base.db and labels/labels.csv" >&2
+  if [ ! -f "$BENCH/$scene/$SOURCE_DB" ] || [ ! -f "$labels" ]; then
+    echo "merge_scenes: $BENCH/$scene has no $SOURCE_DB and labels/labels.csv" >&2
     exit 1
   fi
   kinds=$(grep "^# kinds," "$labels" || true)
@@ -46,11 +56,12 @@ DB="$OUT/base.db"
 databases=""
 prefixes=""
 for scene in "$@"; do
-  databases="${databases:+$databases,}$BENCH/$scene/base.db"
+  databases="${databases:+$databases,}$BENCH/$scene/$SOURCE_DB"
   prefixes="${prefixes:+$prefixes,}${scene}__"
 done
 "$COLMAP" gcn_merge_databases --database_paths "$databases" \
-  --name_prefixes "$prefixes" --output_path "$DB" >/dev/null
+  --name_prefixes "$prefixes" --keep_matches "$KEEP_MATCHES" \
+  --output_path "$DB" >/dev/null
 LABELS="$OUT/labels/labels.csv"
 PAIRS="$OUT/labels/pairs.tmp"
 echo "# source,collection of $*" >"$LABELS"
