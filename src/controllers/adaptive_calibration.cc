@@ -55,6 +55,27 @@ double FitLogOddsOffset(const std::vector<double>& logits,
   return 0.5 * (low + high);
 }
 
+std::vector<double> RelativeLogOddsOffsets(
+    std::vector<std::vector<double>> logits,
+    const std::vector<double>& num_positive,
+    size_t min_samples) {
+  std::vector<double> offsets(logits.size(), 0.0);
+  std::vector<double> all;
+  double all_positive = 0;
+  for (size_t g = 0; g < logits.size(); ++g) {
+    all.insert(all.end(), logits[g].begin(), logits[g].end());
+    all_positive += num_positive[g];
+  }
+  if (all.size() < min_samples) return offsets;
+  const double shared = FitLogOddsOffset(all, all_positive);
+  for (size_t g = 0; g < logits.size(); ++g) {
+    if (logits[g].size() < min_samples) continue;
+    for (double& logit : logits[g]) logit += shared;
+    offsets[g] = FitLogOddsOffset(logits[g], num_positive[g]);
+  }
+  return offsets;
+}
+
 void IsotonicCalibration::Fit(std::vector<std::pair<float, int>> samples) {
   lower_.clear();
   upper_.clear();

@@ -47,6 +47,18 @@ double Sigmoid(double x);
 // a Gaussian prior of weight 2 on d.
 double FitLogOddsOffset(const std::vector<double>& logits, double num_positive);
 
+// Each group's log-odds offset over the one all groups share: the shared
+// offset is fitted on every group's samples (logits, num_positive[g] of
+// group g's positive), then each group's own on its samples shifted by it.
+// A group with fewer than min_samples samples gets 0, and so does every
+// group when all of them have fewer. Used for the strong components of the
+// adaptive loop, whose later rounds take the pairs predicted most probable
+// and so fall short of the prediction in every group alike.
+std::vector<double> RelativeLogOddsOffsets(
+    std::vector<std::vector<double>> logits,
+    const std::vector<double>& num_positive,
+    size_t min_samples);
+
 // The stopping rule's parts (AdaptiveStopRule::kEnough).
 
 // Whether a verified pair with `inliers` is strong relative to its images:

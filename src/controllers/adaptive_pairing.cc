@@ -22,6 +22,7 @@ constexpr int kSupportClasses = 5;
 void AdaptivePairingOptions::Check() const {
   CHECK_OPTION_GE(initial_per_image, 1);
   CHECK_OPTION_RANGE(exploration_fraction, 0.0, 1.0);
+  CHECK_OPTION_GE(max_exploration_pairs, 0);
   CHECK_OPTION_GE(seed, 0);
   CHECK_OPTION(round_size,
                round_size == -1 || round_size >= 1,
@@ -115,6 +116,9 @@ void AdaptivePairGenerator::Reset() {
   calibration_ = IsotonicCalibration();
   support_offsets_.assign(kSupportClasses, 0.0);
   consecutive_offset_ = 0;
+  first_components_.clear();
+  first_round_size_ = 0;
+  component_offsets_.assign(image_ids_.size(), 0.0);
   retries_.assign(image_ids_.size(), 0);
   failures_.assign(image_ids_.size(), 0);
   best_inliers_.assign(image_ids_.size(), 0);
@@ -343,50 +347,7 @@ void AdaptivePairGenerator::Refit() {
     samples.emplace_back(candidate.score, IsStrong(candidate) ? 1 : 0);
   }
   calibration_.Fit(samples);
-  // A matched pair's support counts the strong neighbours its images have
-  // in common now; its own edge is never on those paths.
-  std::vector<std::vector<double>> logits(kSupportClasses);
-  std::vector<double> num_strong(kSupportClasses, 0);
-  for (const int c : yielded_) {
-    const Candidate& candidate = candidates_[c];
-    if (candidate.state != Candidate::State::kObserved) continue;
-    const int support = SupportClass(c);
-    logits[support].push_back(Logit(calibration_.Predict(candidate.score)));
-    num_strong[support] += IsStrong(candidate) ? 1 : 0;
-  }
-  // A class with fewer than min_propagation_samples matched pairs: none.
-  const auto fitted_offset = [&](const std::vector<double>& class_logits,
-                                 double class_strong) {
-    return class_logits.size() >=
-                   static_cast<size_t>(options_.min_propagation_samples)
-               ? FitLogOddsOffset(class_logits, class_strong)
-               : 0.0;
-  };
-  for (int k = 0; k < kSupportClasses; ++k) {
-    support_offsets_[k] = fitted_offset(logits[k], num_strong[k]);
-  }
-  // Consecutive pairs, on top of their support classes' offsets: whether
-  // the name order is the capture order shows in how often they verify.
-  std::vector<double> consecutive_logits;
-  double consecutive_strong = 0;
-  for (const int c : yielded_) {
-    const Candidate& candidate = candidates_[c];
-    if (candidate.state != Candidate::State::kObserved ||
-        !candidate.consecutive) {
-      continue;
-    }
-    consecutive_logits.push_back(Logit(calibration_.Predict(candidate.score)) +
-                                 support_offsets_[SupportClass(c)]);
-    consecutive_strong += IsStrong(candidate) ? 1 : 0;
-  }
-  consecutive_offset_ = fitted_offset(consecutive_logits, consecutive_strong);
-}
-
-double AdaptivePairGenerator::Probability(int c) const {
-  const Candidate& candidate = candidates_[c];
-  return Sigmoid(Logit(calibration_.Predict(candidate.score)) +
-                 support_offsets_[SupportClass(c)] +
-                 (candidate.consecutive ? consecutive_offset_ : 0.0));
+  FitOffsets();
 }
 
 void AdaptivePairGenerator::PrepareNext() const {
@@ -416,10 +377,14 @@ std::vector<int> AdaptivePairGenerator::FirstRound() const {
   std::stable_sort(rest.begin(), rest.end(), [&](int a, int b) {
     return candidates_[a].score > candidates_[b].score;
   });
-  const size_t num_explore = std::min(
+  size_t num_explore = std::min(
       rest.size(),
       static_cast<size_t>(std::ceil(options_.exploration_fraction *
                                     static_cast<double>(block.size()))));
+  if (options_.max_exploration_pairs > 0) {
+    num_explore = std::min(num_explore,
+                           static_cast<size_t>(options_.max_exploration_pairs));
+  }
   uint64_t state = static_cast<uint64_t>(options_.seed);
   for (size_t s = 0; s < num_explore; ++s) {
     const size_t begin = s * rest.size() / num_explore;

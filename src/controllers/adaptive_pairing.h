@@ -51,8 +51,13 @@ struct AdaptivePairingOptions {
 
   // Round 1 also attempts this fraction of its size in lower-ranked
   // candidates, one drawn (with seed) from each of as many equal score
-  // strata, so that the calibration sees the whole score range.
+  // strata, so that the calibration sees the whole score range ...
   double exploration_fraction = 0.1;
+  // ... but at most this many: the calibration needs a sample of the score
+  // range, not one that grows with the collection, and in a photo
+  // collection of many places most lower-ranked candidates are pairs of
+  // two places. 0: no cap.
+  int max_exploration_pairs = 50;
   int seed = 0;
 
   // Pairs per later round; -1: the number of images, at least 50.
@@ -248,6 +253,9 @@ class AdaptivePairGenerator : public PairGenerator {
   int CommonStrongNeighbours(int c) const;
   int SupportClass(int c) const;
   void Refit();
+  // Refit's log-odds offsets (support classes, consecutive pairs, strong
+  // components), after the calibration.
+  void FitOffsets();
 
   const AdaptivePairingOptions options_;
   const std::string label_;
@@ -268,7 +276,15 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<double> support_offsets_;
   // Log-odds offset of consecutive pairs, over the support offset.
   double consecutive_offset_ = 0;
-  std::vector<int> retries_;          // connectivity attempts per row
+  // The strong components after round 1, frozen (row -> label); each
+  // one's log-odds offset, over the support and consecutive offsets,
+  // fitted on the later rounds' matched pairs inside it (0 with fewer than
+  // min_propagation_samples). In a collection of places each place learns
+  // its own yield, whatever its scores are next to the others'.
+  std::vector<int> first_components_;
+  size_t first_round_size_ = 0;
+  std::vector<double> component_offsets_;  // by label
+  std::vector<int> retries_;               // connectivity attempts per row
   std::vector<int> failures_;         // kEnough: attempts not strong, per row
   std::vector<size_t> best_inliers_;  // best verified pair per row
   PairRejection rejected_;

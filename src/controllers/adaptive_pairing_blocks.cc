@@ -1,7 +1,9 @@
 // The blocks AdaptivePairGenerator adds beyond its ranked and probe rounds:
 // the per-image guarantee and the bridging between strong components
-// (kEnough), the connectivity attempts (kRecall); and the strong paths a
-// candidate closes, which propagation classes it by.
+// (kEnough), the connectivity attempts (kRecall); the strong paths a
+// candidate closes, which propagation classes it by; and the log-odds
+// offsets over the calibrated probability (support classes, consecutive
+// pairs, strong components).
 #include <algorithm>
 
 #include "controllers/adaptive_pairing.h"
@@ -174,6 +176,85 @@ std::vector<int> AdaptivePairGenerator::BridgeBlock(
     wanted[b] = 0;
   }
   return block;
+}
+
+void AdaptivePairGenerator::FitOffsets() {
+  // A matched pair's support counts the strong neighbours its images have
+  // in common now; its own edge is never on those paths.
+  const size_t num_classes = support_offsets_.size();
+  std::vector<std::vector<double>> logits(num_classes);
+  std::vector<double> num_strong(num_classes, 0);
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (candidate.state != Candidate::State::kObserved) continue;
+    const int support = SupportClass(c);
+    logits[support].push_back(Logit(calibration_.Predict(candidate.score)));
+    num_strong[support] += IsStrong(candidate) ? 1 : 0;
+  }
+  // A class with fewer than min_propagation_samples matched pairs: none.
+  const auto fitted_offset = [&](const std::vector<double>& class_logits,
+                                 double class_strong) {
+    return class_logits.size() >=
+                   static_cast<size_t>(options_.min_propagation_samples)
+               ? FitLogOddsOffset(class_logits, class_strong)
+               : 0.0;
+  };
+  for (size_t k = 0; k < num_classes; ++k) {
+    support_offsets_[k] = fitted_offset(logits[k], num_strong[k]);
+  }
+  // Consecutive pairs, on top of their support classes' offsets: whether
+  // the name order is the capture order shows in how often they verify.
+  std::vector<double> consecutive_logits;
+  double consecutive_strong = 0;
+  for (const int c : yielded_) {
+    const Candidate& candidate = candidates_[c];
+    if (candidate.state != Candidate::State::kObserved ||
+        !candidate.consecutive) {
+      continue;
+    }
+    consecutive_logits.push_back(Logit(calibration_.Predict(candidate.score)) +
+                                 support_offsets_[SupportClass(c)]);
+    consecutive_strong += IsStrong(candidate) ? 1 : 0;
+  }
+  consecutive_offset_ = fitted_offset(consecutive_logits, consecutive_strong);
+  // Components are frozen after round 1 and fitted on the pairs matched
+  // after it, so that no pair's own strong edge puts it inside one.
+  if (first_components_.empty()) {
+    first_components_ = ComponentLabels(strong_neighbours_);
+    first_round_size_ = yielded_.size();
+  }
+  std::vector<std::vector<double>> component_logits(image_ids_.size());
+  std::vector<double> component_strong(image_ids_.size(), 0);
+  for (size_t i = first_round_size_; i < yielded_.size(); ++i) {
+    const int c = yielded_[i];
+    const Candidate& candidate = candidates_[c];
+    const int label = first_components_[candidate.row1];
+    if (candidate.state != Candidate::State::kObserved ||
+        label != first_components_[candidate.row2]) {
+      continue;
+    }
+    component_logits[label].push_back(
+        Logit(calibration_.Predict(candidate.score)) +
+        support_offsets_[SupportClass(c)] +
+        (candidate.consecutive ? consecutive_offset_ : 0.0));
+    component_strong[label] += IsStrong(candidate) ? 1 : 0;
+  }
+  component_offsets_ = RelativeLogOddsOffsets(
+      std::move(component_logits),
+      component_strong,
+      static_cast<size_t>(options_.min_propagation_samples));
+}
+
+double AdaptivePairGenerator::Probability(int c) const {
+  const Candidate& candidate = candidates_[c];
+  const int label =
+      first_components_.empty() ? -1 : first_components_[candidate.row1];
+  return Sigmoid(Logit(calibration_.Predict(candidate.score)) +
+                 support_offsets_[SupportClass(c)] +
+                 (candidate.consecutive ? consecutive_offset_ : 0.0) +
+                 (label >= 0 && label == first_components_[candidate.row2]
+                      ? component_offsets_[label]
+                      : 0.0));
 }
 
 }  // namespace colmap_gcn

@@ -177,6 +177,10 @@ void AddAdaptiveOptions(OptionManager* manager,
       "GcnMatching.exploration_fraction",
       &options->exploration_fraction,
       "adaptive/graphmatch: round 1's share of lower-ranked candidates");
+  manager->AddDefaultOption(
+      "GcnMatching.max_exploration_pairs",
+      &options->max_exploration_pairs,
+      "adaptive/graphmatch: at most this many of them; 0: no cap");
   manager->AddDefaultOption("GcnMatching.seed",
                             &options->seed,
                             "adaptive/graphmatch: seed of the exploration");

@@ -107,6 +107,32 @@ TEST(FitLogOddsOffset, RaisesAClassThatVerifiesMoreThanPredicted) {
   EXPECT_NEAR(Sigmoid(Logit(0.3)), 0.3, 1e-9);
 }
 
+TEST(RelativeLogOddsOffsets, OnlyWhatSetsAGroupApartFromTheOthers) {
+  // Two groups predicted at 0.5: the first verifies 8 of 10, the second
+  // 2 of 10. Together they verify as predicted, so the shared offset is 0
+  // and each group keeps its own, of opposite sign.
+  const std::vector<std::vector<double>> logits(2, std::vector<double>(10));
+  std::vector<double> offsets = RelativeLogOddsOffsets(logits, {8, 2}, 10);
+  ASSERT_EQ(offsets.size(), 2u);
+  EXPECT_GT(offsets[0], 0.5);
+  EXPECT_NEAR(offsets[1], -offsets[0], 1e-6);
+  // Both fall short alike (3 of 10): the shortfall is shared, so each
+  // keeps only what the shared offset's prior left of it.
+  offsets = RelativeLogOddsOffsets(logits, {3, 3}, 10);
+  EXPECT_NEAR(offsets[0], offsets[1], 1e-9);
+  EXPECT_LT(std::abs(offsets[0]),
+            0.5 * std::abs(FitLogOddsOffset(logits[0], 3)));
+  // A group with too few samples gets none; the other is still relative
+  // to all samples.
+  const std::vector<std::vector<double>> uneven = {std::vector<double>(10),
+                                                   std::vector<double>(4)};
+  offsets = RelativeLogOddsOffsets(uneven, {10, 0}, 10);
+  EXPECT_GT(offsets[0], 0.5);
+  EXPECT_EQ(offsets[1], 0.0);
+  EXPECT_EQ(RelativeLogOddsOffsets(uneven, {10, 0}, 20),
+            std::vector<double>(2, 0.0));
+}
+
 TEST(IsRelativelyStrong, AgainstTheWeakerImagesBestPair) {
   // Best pairs of 800 and 200 inliers: the reference is 200.
   EXPECT_TRUE(IsRelativelyStrong(50, 800, 200, 0.25));

@@ -350,6 +350,63 @@ TEST(AdaptivePairGenerator, ConsecutivePairsLearnTheirOwnOffset) {
   EXPECT_GE(junction_pairs(walk.candidates), 1);
 }
 
+// Two unrelated places of 30 photos each, where photos up to 6 apart
+// overlap; the prior ranks place B's pairs four times lower than place A's
+// at the same distance, so that B's overlapping pairs score like A's pairs
+// that do not overlap. Pairs across places score lowest and never verify.
+struct TwoPlaces {
+  TwoPlaces() {
+    for (image_t id = 1; id <= 60; ++id) image_ids.push_back(id);
+    for (image_t a = 1; a <= 60; ++a) {
+      for (image_t b = a + 1; b <= 60; ++b) {
+        const float d = static_cast<float>(b - a);
+        const float score =
+            !SamePlace(a, b) ? 0.01f : (a <= 30 ? 1.0f / d : 0.25f / d);
+        candidates.push_back({a, b, score});
+      }
+    }
+  }
+  static bool SamePlace(image_t a, image_t b) { return (a <= 30) == (b <= 30); }
+  static bool Overlap(const ImagePair& pair) {
+    return SamePlace(pair.first, pair.second) &&
+           std::abs(static_cast<int>(pair.first) -
+                    static_cast<int>(pair.second)) <= 6;
+  }
+  static PairVerification Verify(const ImagePair& pair) {
+    PairVerification verification;
+    verification.image_id1 = pair.first;
+    verification.image_id2 = pair.second;
+    if (Overlap(pair)) {
+      verification.config = 2;
+      verification.num_inliers = 300;
+    }
+    return verification;
+  }
+  std::vector<image_t> image_ids;
+  std::vector<PairCandidate> candidates;
+};
+
+TEST(AdaptivePairGenerator, EachPlaceLearnsItsOwnYield) {
+  const TwoPlaces places;
+  AdaptivePairGenerator generator(
+      AdaptivePairingOptions(), places.image_ids, places.candidates);
+  const std::vector<ImagePair> pairs =
+      Flatten(RunToTheEnd(&generator, [&](const ImagePair& pair) {
+        return TwoPlaces::Verify(pair);
+      }));
+  int found_a = 0;
+  int found_b = 0;
+  for (const ImagePair& pair : pairs) {
+    if (!TwoPlaces::Overlap(pair)) continue;
+    ++(pair.first <= 30 ? found_a : found_b);
+  }
+  // 159 overlapping pairs in each place. With one calibration for both,
+  // B's pairs look as unlikely as A's that do not overlap, and B stops
+  // at 63 (its images' guaranteed partners and little more).
+  EXPECT_GE(found_a, 150);
+  EXPECT_GE(found_b, 150);
+}
+
 TEST(AddConsecutivePairs, MarksNameNeighboursAndAddsTheMissing) {
   const TemporaryDirectory dir("colmap_gcn_consecutive");
   const std::string path = JoinPaths(dir.Path(), "database.db");
@@ -390,6 +447,25 @@ TEST(AdaptivePairGenerator, WithoutResultsOnlyTheFirstRound) {
   EXPECT_GE(pairs.size(), 12u);
   EXPECT_LE(pairs.size(), 24u);
   EXPECT_TRUE(generator.HasFinished());
+}
+
+// Round 1's exploration is a fraction of its size, but at most
+// max_exploration_pairs: a larger collection gets no larger sample.
+TEST(AdaptivePairGenerator, ExplorationIsCapped) {
+  const RingScene scene(200);
+  AdaptivePairingOptions options;
+  options.initial_per_image = 2;
+  const auto first_round = [&](int cap) {
+    options.max_exploration_pairs = cap;
+    AdaptivePairGenerator generator(options, scene.image_ids, scene.candidates);
+    return generator.Next().size();
+  };
+  options.exploration_fraction = 0;
+  const size_t best = first_round(0);
+  options.exploration_fraction = 0.1;
+  EXPECT_EQ(first_round(0), best + static_cast<size_t>(std::ceil(0.1 * best)));
+  ASSERT_GT(std::ceil(0.1 * best), 10);
+  EXPECT_EQ(first_round(10), best + 10);
 }
 
 TEST(AdaptivePairGenerator, BadInputIsAnError) {
@@ -476,6 +552,8 @@ TEST(AdaptivePairingOptions, CheckNamesTheField) {
          "max_strong_inliers");
   expect([](AdaptivePairingOptions* o) { o->exploration_fraction = -0.1; },
          "exploration_fraction");
+  expect([](AdaptivePairingOptions* o) { o->max_exploration_pairs = -1; },
+         "max_exploration_pairs");
   expect([](AdaptivePairingOptions* o) { o->isolated_retries = -1; },
          "isolated_retries");
   expect([](AdaptivePairingOptions* o) { o->relative_strength = 1.5; },
