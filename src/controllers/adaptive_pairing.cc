@@ -108,6 +108,7 @@ void AdaptivePairGenerator::Reset() {
     candidate.verified = false;
     candidate.num_inliers = 0;
     candidate.bridge = false;
+    candidate.inside = false;
   }
   yielded_.clear();
   rounds_.clear();
@@ -116,8 +117,7 @@ void AdaptivePairGenerator::Reset() {
   calibration_ = IsotonicCalibration();
   support_offsets_.assign(kSupportClasses, 0.0);
   consecutive_offset_ = 0;
-  first_components_.clear();
-  first_round_size_ = 0;
+  components_.clear();
   component_offsets_.assign(image_ids_.size(), 0.0);
   retries_.assign(image_ids_.size(), 0);
   failures_.assign(image_ids_.size(), 0);
@@ -156,6 +156,8 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
     Candidate& candidate = candidates_[c];
     candidate.state = Candidate::State::kPending;
     candidate.bridge = next_bridging_;
+    candidate.inside = !components_.empty() && components_[candidate.row1] ==
+                                                   components_[candidate.row2];
     yielded_.push_back(c);
     block.emplace_back(image_ids_[candidate.row1], image_ids_[candidate.row2]);
     if (connectivity) {
