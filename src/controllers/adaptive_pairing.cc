@@ -108,7 +108,6 @@ void AdaptivePairGenerator::Reset() {
     candidate.verified = false;
     candidate.num_inliers = 0;
     candidate.bridge = false;
-    candidate.inside = false;
   }
   yielded_.clear();
   rounds_.clear();
@@ -117,7 +116,8 @@ void AdaptivePairGenerator::Reset() {
   calibration_ = IsotonicCalibration();
   support_offsets_.assign(kSupportClasses, 0.0);
   consecutive_offset_ = 0;
-  components_.clear();
+  first_components_.clear();
+  first_round_size_ = 0;
   component_offsets_.assign(image_ids_.size(), 0.0);
   retries_.assign(image_ids_.size(), 0);
   failures_.assign(image_ids_.size(), 0);
@@ -156,8 +156,6 @@ std::vector<ImagePair> AdaptivePairGenerator::Next() {
     Candidate& candidate = candidates_[c];
     candidate.state = Candidate::State::kPending;
     candidate.bridge = next_bridging_;
-    candidate.inside = !components_.empty() && components_[candidate.row1] ==
-                                                   components_[candidate.row2];
     yielded_.push_back(c);
     block.emplace_back(image_ids_[candidate.row1], image_ids_[candidate.row2]);
     if (connectivity) {

@@ -221,7 +221,6 @@ class AdaptivePairGenerator : public PairGenerator {
     size_t num_inliers = 0;
     bool bridge = false;  // yielded by a bridging round
     bool consecutive = false;
-    bool inside = false;  // its images in one strong component when chosen
   };
 
   void PrepareNext() const;  // fills next_ (logical constness: a cache)
@@ -277,13 +276,13 @@ class AdaptivePairGenerator : public PairGenerator {
   std::vector<double> support_offsets_;
   // Log-odds offset of consecutive pairs, over the support offset.
   double consecutive_offset_ = 0;
-  // Each image's strong component (ComponentLabels) after the last refit,
-  // and each component's log-odds offset, over the support and consecutive
-  // offsets, fitted on the matched pairs whose images were already in one
-  // component when they were chosen (0 with fewer than
+  // The strong components after round 1, frozen (row -> label); each
+  // one's log-odds offset, over the support and consecutive offsets,
+  // fitted on the later rounds' matched pairs inside it (0 with fewer than
   // min_propagation_samples). In a collection of places each place learns
   // its own yield, whatever its scores are next to the others'.
-  std::vector<int> components_;
+  std::vector<int> first_components_;
+  size_t first_round_size_ = 0;
   std::vector<double> component_offsets_;  // by label
   std::vector<int> retries_;               // connectivity attempts per row
   std::vector<int> failures_;         // kEnough: attempts not strong, per row

@@ -217,16 +217,20 @@ void AdaptivePairGenerator::FitOffsets() {
     consecutive_strong += IsStrong(candidate) ? 1 : 0;
   }
   consecutive_offset_ = fitted_offset(consecutive_logits, consecutive_strong);
-  // A pair counts for its component only if its images were in one
-  // before it was tried, so that no pair's own strong edge puts it there.
-  components_ = ComponentLabels(strong_neighbours_);
+  // Components are frozen after round 1 and fitted on the pairs matched
+  // after it, so that no pair's own strong edge puts it inside one.
+  if (first_components_.empty()) {
+    first_components_ = ComponentLabels(strong_neighbours_);
+    first_round_size_ = yielded_.size();
+  }
   std::vector<std::vector<double>> component_logits(image_ids_.size());
   std::vector<double> component_strong(image_ids_.size(), 0);
-  for (const int c : yielded_) {
+  for (size_t i = first_round_size_; i < yielded_.size(); ++i) {
+    const int c = yielded_[i];
     const Candidate& candidate = candidates_[c];
-    const int label = components_[candidate.row1];
-    if (candidate.state != Candidate::State::kObserved || !candidate.inside ||
-        label != components_[candidate.row2]) {
+    const int label = first_components_[candidate.row1];
+    if (candidate.state != Candidate::State::kObserved ||
+        label != first_components_[candidate.row2]) {
       continue;
     }
     component_logits[label].push_back(
@@ -243,11 +247,12 @@ void AdaptivePairGenerator::FitOffsets() {
 
 double AdaptivePairGenerator::Probability(int c) const {
   const Candidate& candidate = candidates_[c];
-  const int label = components_.empty() ? -1 : components_[candidate.row1];
+  const int label =
+      first_components_.empty() ? -1 : first_components_[candidate.row1];
   return Sigmoid(Logit(calibration_.Predict(candidate.score)) +
                  support_offsets_[SupportClass(c)] +
                  (candidate.consecutive ? consecutive_offset_ : 0.0) +
-                 (label >= 0 && label == components_[candidate.row2]
+                 (label >= 0 && label == first_components_[candidate.row2]
                       ? component_offsets_[label]
                       : 0.0));
 }
