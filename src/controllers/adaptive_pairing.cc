@@ -117,7 +117,6 @@ void AdaptivePairGenerator::Reset() {
   support_offsets_.assign(kSupportClasses, 0.0);
   consecutive_offset_ = 0;
   first_components_.clear();
-  first_round_size_ = 0;
   component_offsets_.assign(image_ids_.size(), 0.0);
   retries_.assign(image_ids_.size(), 0);
   failures_.assign(image_ids_.size(), 0);

@@ -256,6 +256,9 @@ class AdaptivePairGenerator : public PairGenerator {
   // Refit's log-odds offsets (support classes, consecutive pairs, strong
   // components), after the calibration.
   void FitOffsets();
+  // A candidate's calibrated log-odds with its support and consecutive
+  // offsets (Probability adds its component's).
+  double OffsetLogit(int c) const;
 
   const AdaptivePairingOptions options_;
   const std::string label_;
@@ -282,7 +285,6 @@ class AdaptivePairGenerator : public PairGenerator {
   // min_propagation_samples). In a collection of places each place learns
   // its own yield, whatever its scores are next to the others'.
   std::vector<int> first_components_;
-  size_t first_round_size_ = 0;
   std::vector<double> component_offsets_;  // by label
   std::vector<int> retries_;               // connectivity attempts per row
   std::vector<int> failures_;         // kEnough: attempts not strong, per row

@@ -221,11 +221,10 @@ void AdaptivePairGenerator::FitOffsets() {
   // after it, so that no pair's own strong edge puts it inside one.
   if (first_components_.empty()) {
     first_components_ = ComponentLabels(strong_neighbours_);
-    first_round_size_ = yielded_.size();
   }
   std::vector<std::vector<double>> component_logits(image_ids_.size());
   std::vector<double> component_strong(image_ids_.size(), 0);
-  for (size_t i = first_round_size_; i < yielded_.size(); ++i) {
+  for (size_t i = rounds_.front().num_pairs; i < yielded_.size(); ++i) {
     const int c = yielded_[i];
     const Candidate& candidate = candidates_[c];
     const int label = first_components_[candidate.row1];
@@ -233,10 +232,7 @@ void AdaptivePairGenerator::FitOffsets() {
         label != first_components_[candidate.row2]) {
       continue;
     }
-    component_logits[label].push_back(
-        Logit(calibration_.Predict(candidate.score)) +
-        support_offsets_[SupportClass(c)] +
-        (candidate.consecutive ? consecutive_offset_ : 0.0));
+    component_logits[label].push_back(OffsetLogit(c));
     component_strong[label] += IsStrong(candidate) ? 1 : 0;
   }
   component_offsets_ = RelativeLogOddsOffsets(
@@ -245,13 +241,18 @@ void AdaptivePairGenerator::FitOffsets() {
       static_cast<size_t>(options_.min_propagation_samples));
 }
 
+double AdaptivePairGenerator::OffsetLogit(int c) const {
+  const Candidate& candidate = candidates_[c];
+  return Logit(calibration_.Predict(candidate.score)) +
+         support_offsets_[SupportClass(c)] +
+         (candidate.consecutive ? consecutive_offset_ : 0.0);
+}
+
 double AdaptivePairGenerator::Probability(int c) const {
   const Candidate& candidate = candidates_[c];
   const int label =
       first_components_.empty() ? -1 : first_components_[candidate.row1];
-  return Sigmoid(Logit(calibration_.Predict(candidate.score)) +
-                 support_offsets_[SupportClass(c)] +
-                 (candidate.consecutive ? consecutive_offset_ : 0.0) +
+  return Sigmoid(OffsetLogit(c) +
                  (label >= 0 && label == first_components_[candidate.row2]
                       ? component_offsets_[label]
                       : 0.0));

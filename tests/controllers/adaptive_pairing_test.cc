@@ -319,15 +319,11 @@ struct TwoBlockWalk {
                                 (std::max(pair.first, pair.second) <= 30);
   }
   static PairVerification Verify(const ImagePair& pair) {
-    PairVerification verification;
-    verification.image_id1 = pair.first;
-    verification.image_id2 = pair.second;
-    if (Overlap(pair)) {
-      verification.config = 2;
-      verification.num_inliers = 600 / std::abs(static_cast<int>(pair.first) -
-                                                static_cast<int>(pair.second));
-    }
-    return verification;
+    return test::Verified(pair,
+                          Overlap(pair)
+                              ? 600 / std::abs(static_cast<int>(pair.first) -
+                                               static_cast<int>(pair.second))
+                              : 0);
   }
   std::vector<image_t> image_ids;
   std::vector<PairCandidate> candidates;
@@ -373,14 +369,7 @@ struct TwoPlaces {
                     static_cast<int>(pair.second)) <= 6;
   }
   static PairVerification Verify(const ImagePair& pair) {
-    PairVerification verification;
-    verification.image_id1 = pair.first;
-    verification.image_id2 = pair.second;
-    if (Overlap(pair)) {
-      verification.config = 2;
-      verification.num_inliers = 300;
-    }
-    return verification;
+    return test::Verified(pair, Overlap(pair) ? 300 : 0);
   }
   std::vector<image_t> image_ids;
   std::vector<PairCandidate> candidates;

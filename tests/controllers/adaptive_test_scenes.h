@@ -86,6 +86,19 @@ struct LineScene {
   std::vector<PairCandidate> candidates;
 };
 
+// The verification of `pair`: geometrically verified (config 2) with
+// num_inliers inliers, or not verified with 0.
+inline PairVerification Verified(const ImagePair& pair, size_t num_inliers) {
+  PairVerification verification;
+  verification.image_id1 = pair.first;
+  verification.image_id2 = pair.second;
+  if (num_inliers > 0) {
+    verification.config = 2;
+    verification.num_inliers = num_inliers;
+  }
+  return verification;
+}
+
 // Runs the generator to the end, verifying each block with `verify`;
 // returns its blocks.
 std::vector<std::vector<ImagePair>> RunToTheEnd(
